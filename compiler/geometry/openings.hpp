@@ -1,0 +1,24 @@
+#pragma once
+// Cuts doors, open passages and windows out of the walls they lie on. In EnergyPlus DXF files these are
+// separate faces coplanar with (and inside) their host wall; after cutting, an opening is a hole in the wall
+// (and its face is dropped), a window is a hole filled by its own glass polygon.
+#include <cstddef>
+
+#include "model/model.hpp"
+
+namespace walk::compiler {
+
+// Distance within which a face counts as lying on a wall's plane, metres: EnergyPlus writes 5 decimals and
+// windows sit on their wall; 2 mm is well above round-off and below any real wall thickness.
+inline constexpr double kCoplanarTolerance = 0.002;
+
+struct OpeningStats {
+  std::size_t hosts_cut = 0;         // walls that got at least one hole or notch
+  std::size_t openings_cut = 0;      // Role::Opening faces used (and removed)
+  std::size_t glass_cut = 0;         // Role::Glass faces cut out of a host (and kept)
+  std::size_t unmatched = 0;         // opening/glass faces with no coplanar host (kept as they are)
+};
+
+OpeningStats cut_openings(model::Model& model, double tolerance = kCoplanarTolerance);
+
+}  // namespace walk::compiler

@@ -1,0 +1,91 @@
+#pragma once
+// Writing and reading .walk bundles. The writer builds the file in a temporary name and renames it, so a
+// failed compile never leaves a partial bundle. The reader maps the file and validates every offset, count,
+// cross-reference and checksum before handing out views, so the runtime can trust what it reads.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "model/bundle_format.hpp"
+
+namespace walk::model {
+
+// Everything a bundle holds, as owned vectors: what the compiler fills in and the writer serialises.
+struct BundleContents {
+  MetaRecord meta{};
+  std::vector<VertexRecord> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<PolygonRecord> polygons;
+  std::vector<MaterialRecord> materials;
+  std::vector<GroupRecord> groups;
+  std::vector<CircuitRecord> circuits;
+  std::vector<LuminaireRecord> luminaires;
+  std::vector<float> light;  // vertices.size() * circuits.size() * 3
+  std::vector<CellRecord> cells;
+  std::vector<NodeRecord> nodes;
+  std::vector<std::uint32_t> pvs;
+  std::vector<StageRecord> stages;
+  std::string strings{'\0'};  // offset 0 is the empty string
+
+  // Appends a NUL-terminated string and returns its offset.
+  std::uint32_t add_string(std::string_view s);
+};
+
+// Writes atomically: temp file in the same folder, fsync, rename. Throws walk::Error on failure.
+void write_bundle(const std::string& path, const BundleContents& contents);
+
+class Bundle {
+ public:
+  // Maps and validates `path`; throws walk::Error naming the file and the first problem found.
+  static std::unique_ptr<Bundle> open(const std::string& path);
+  ~Bundle();
+  Bundle(const Bundle&) = delete;
+  Bundle& operator=(const Bundle&) = delete;
+
+  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] const MetaRecord& meta() const { return *meta_; }
+  [[nodiscard]] std::span<const VertexRecord> vertices() const { return vertices_; }
+  [[nodiscard]] std::span<const std::uint32_t> indices() const { return indices_; }
+  [[nodiscard]] std::span<const PolygonRecord> polygons() const { return polygons_; }
+  [[nodiscard]] std::span<const MaterialRecord> materials() const { return materials_; }
+  [[nodiscard]] std::span<const GroupRecord> groups() const { return groups_; }
+  [[nodiscard]] std::span<const CircuitRecord> circuits() const { return circuits_; }
+  [[nodiscard]] std::span<const LuminaireRecord> luminaires() const { return luminaires_; }
+  [[nodiscard]] std::span<const float> light() const { return light_; }
+  [[nodiscard]] std::span<const CellRecord> cells() const { return cells_; }
+  [[nodiscard]] std::span<const NodeRecord> nodes() const { return nodes_; }
+  [[nodiscard]] std::span<const std::uint32_t> pvs() const { return pvs_; }
+  [[nodiscard]] std::span<const StageRecord> stages() const { return stages_; }
+  [[nodiscard]] std::string_view string(std::uint32_t offset) const;  // validated at open
+  [[nodiscard]] std::uint64_t file_size() const { return size_; }
+
+  // Cell containing a local-coordinate point, by walking the node tree: O(tree depth).
+  [[nodiscard]] std::uint32_t locate_cell(const double p[3]) const;
+
+ private:
+  Bundle() = default;
+  void validate();
+
+  std::string path_;
+  void* map_ = nullptr;
+  std::uint64_t size_ = 0;
+  const MetaRecord* meta_ = nullptr;
+  std::span<const VertexRecord> vertices_;
+  std::span<const std::uint32_t> indices_;
+  std::span<const PolygonRecord> polygons_;
+  std::span<const MaterialRecord> materials_;
+  std::span<const GroupRecord> groups_;
+  std::span<const CircuitRecord> circuits_;
+  std::span<const LuminaireRecord> luminaires_;
+  std::span<const float> light_;
+  std::span<const CellRecord> cells_;
+  std::span<const NodeRecord> nodes_;
+  std::span<const std::uint32_t> pvs_;
+  std::span<const StageRecord> stages_;
+  std::span<const char> strings_;
+};
+
+}  // namespace walk::model

@@ -1,0 +1,143 @@
+#pragma once
+// On-disk layout of a .walk bundle: the one contract between the display compiler and the runtime.
+// Little-endian, fixed-size POD records, every section 16-byte aligned and CRC-32 checked.
+// Bump kBundleVersion whenever a record changes; readers refuse other versions.
+#include <array>
+#include <cstdint>
+
+namespace walk::model {
+
+inline constexpr std::array<char, 8> kBundleMagic{'W', 'A', 'L', 'K', 'B', 'N', 'D', 'L'};
+inline constexpr std::uint32_t kBundleVersion = 1;
+inline constexpr std::uint64_t kSectionAlignment = 16;
+
+// Tags of the sections, as four ASCII bytes read as a little-endian integer.
+constexpr std::uint32_t tag(const char (&s)[5]) {
+  return std::uint32_t(std::uint8_t(s[0])) | std::uint32_t(std::uint8_t(s[1])) << 8 |
+         std::uint32_t(std::uint8_t(s[2])) << 16 | std::uint32_t(std::uint8_t(s[3])) << 24;
+}
+
+struct FileHeader {
+  std::array<char, 8> magic;
+  std::uint32_t version;
+  std::uint32_t section_count;
+  std::uint64_t file_size;
+  std::uint32_t table_crc;  // CRC-32 of the section table that follows the header
+  std::uint32_t reserved;
+};
+static_assert(sizeof(FileHeader) == 32);
+
+struct SectionEntry {
+  std::uint32_t tag;
+  std::uint32_t record_size;
+  std::uint64_t offset;
+  std::uint64_t count;
+  std::uint32_t crc;
+  std::uint32_t reserved;
+};
+static_assert(sizeof(SectionEntry) == 32);
+
+struct MetaRecord {
+  double origin[3];  // world position of the local origin, metres
+  float bounds_min[3];
+  float bounds_max[3];
+  float ambient;     // uniform ambient radiosity fraction added at display time (W/m2 per unit albedo)
+  float exposure;    // radiosity (W/m2) that maps to display white
+  std::uint64_t scene_hash;
+  std::uint32_t circuit_count;
+  std::uint32_t reserved;
+};
+static_assert(sizeof(MetaRecord) == 72);
+
+struct VertexRecord {
+  float position[3];  // local coordinates, metres
+  float normal[3];
+  float albedo[3];    // diffuse reflectance of the polygon
+  std::uint32_t polygon;
+};
+static_assert(sizeof(VertexRecord) == 40);
+
+struct PolygonRecord {
+  std::uint32_t first_index;  // into INDX, a multiple of 3
+  std::uint32_t index_count;
+  std::uint32_t first_vertex;
+  std::uint32_t vertex_count;
+  std::uint32_t material;
+  std::uint32_t group;
+  std::uint32_t role;  // model::Role
+  std::uint32_t name;  // string offset
+};
+static_assert(sizeof(PolygonRecord) == 32);
+
+struct MaterialRecord {
+  float reflectance[3];
+  std::uint32_t name;
+};
+static_assert(sizeof(MaterialRecord) == 16);
+
+struct GroupRecord {
+  std::uint32_t name;
+};
+
+struct CircuitRecord {
+  std::uint32_t name;
+  float default_level;
+};
+
+struct LuminaireRecord {
+  float position[3];
+  float normal[3];
+  float u_axis[3];
+  float width, height;
+  float power[3];
+  std::uint32_t circuit;
+  std::uint32_t name;
+};
+static_assert(sizeof(LuminaireRecord) == 64);
+
+// A cell of the model-space subdivision with its potentially visible set (a range of PVSL).
+struct CellRecord {
+  float bounds_min[3];
+  float bounds_max[3];
+  std::uint32_t pvs_first;
+  std::uint32_t pvs_count;
+};
+static_assert(sizeof(CellRecord) == 32);
+
+// A node of the cell tree: points with plane(p) >= 0 go to `front`. A negative child c is cell -c-1.
+struct NodeRecord {
+  double plane[4];
+  std::int32_t front;
+  std::int32_t back;
+};
+static_assert(sizeof(NodeRecord) == 40);
+
+// What a compiler stage did: lets a later compile skip a stage whose inputs did not change.
+struct StageRecord {
+  std::uint32_t name;
+  std::uint32_t ran;  // 1 when run, 0 when skipped (scene did not call for it)
+  std::uint64_t input_hash;
+  double seconds;
+  std::uint64_t items_in;
+  std::uint64_t items_out;
+};
+static_assert(sizeof(StageRecord) == 40);
+
+namespace section {
+inline constexpr std::uint32_t kMeta = tag("META");
+inline constexpr std::uint32_t kVertices = tag("VERT");
+inline constexpr std::uint32_t kIndices = tag("INDX");
+inline constexpr std::uint32_t kPolygons = tag("POLY");
+inline constexpr std::uint32_t kMaterials = tag("MATL");
+inline constexpr std::uint32_t kGroups = tag("GRPS");
+inline constexpr std::uint32_t kCircuits = tag("CIRC");
+inline constexpr std::uint32_t kLuminaires = tag("LUMS");
+inline constexpr std::uint32_t kLight = tag("LGHT");  // float RGB per vertex per circuit: [v][c][3]
+inline constexpr std::uint32_t kCells = tag("CELL");
+inline constexpr std::uint32_t kNodes = tag("NODE");
+inline constexpr std::uint32_t kPvs = tag("PVSL");  // polygon indices, per cell ranges
+inline constexpr std::uint32_t kStages = tag("STAG");
+inline constexpr std::uint32_t kStrings = tag("STRS");
+}  // namespace section
+
+}  // namespace walk::model

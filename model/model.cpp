@@ -1,0 +1,47 @@
+#include "model/model.hpp"
+
+#include <algorithm>
+
+namespace walk::model {
+
+const char* role_name(Role role) {
+  switch (role) {
+    case Role::Opaque: return "opaque";
+    case Role::Glass: return "glass";
+    case Role::Opening: return "opening";
+    case Role::Luminaire: return "luminaire";
+    case Role::Ignored: return "ignored";
+  }
+  return "unknown";
+}
+
+bool parse_role(const std::string& text, Role& out) {
+  for (Role r : {Role::Opaque, Role::Glass, Role::Opening, Role::Luminaire, Role::Ignored}) {
+    if (text == role_name(r)) {
+      out = r;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::uint32_t Model::group_index(const std::string& name) {
+  auto it = std::find(groups.begin(), groups.end(), name);
+  if (it != groups.end()) return static_cast<std::uint32_t>(it - groups.begin());
+  groups.push_back(name);
+  return static_cast<std::uint32_t>(groups.size() - 1);
+}
+
+void Bounds::add(const Vec3& p) {
+  min = glm::min(min, p);
+  max = glm::max(max, p);
+}
+
+Bounds bounds_of(const Model& model) {
+  Bounds b;
+  for (const auto& poly : model.polygons)
+    for (const auto& v : poly.vertices) b.add(v);
+  return b;
+}
+
+}  // namespace walk::model

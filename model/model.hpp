@@ -1,0 +1,82 @@
+#pragma once
+// The in-memory building: what every importer produces and every compiler stage reads.
+// Coordinates are double precision metres relative to `origin` (world = origin + local), so that models
+// authored far from the world origin keep full precision; rendering converts local coordinates to float.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace walk::model {
+
+using Vec3 = glm::dvec3;
+using Rgb = glm::dvec3;
+
+// What a face is for. Opening faces (doors, open passages) are cut out of their host walls and are not drawn:
+// they become holes the viewer walks through. Glass is drawn and blocks walking but not seeing.
+enum class Role : std::uint8_t { Opaque = 0, Glass = 1, Opening = 2, Luminaire = 3, Ignored = 4 };
+
+[[nodiscard]] const char* role_name(Role role);
+[[nodiscard]] bool parse_role(const std::string& text, Role& out);
+
+struct Material {
+  std::string name;
+  Rgb reflectance{0.5, 0.5, 0.5};  // diffuse reflectance per channel, 0..1
+};
+
+// A planar polygon, counter-clockwise seen from the side its normal points to. `group` names the room/zone
+// it bounds (the DXF layer for EnergyPlus files); `source` is where it came from, for error messages.
+struct Polygon {
+  std::vector<Vec3> vertices;              // outer boundary, counter-clockwise about the normal
+  std::vector<std::vector<Vec3>> holes;    // clockwise about the normal, inside the outer boundary
+  std::uint32_t material = 0;
+  Role role = Role::Opaque;
+  std::uint32_t group = 0;  // index into Model::groups
+  int color = 0;            // source colour number (DXF ACI), 0 when none
+  std::string name;         // source name (EnergyPlus surface name), may be empty
+  std::uint32_t source_line = 0;
+};
+
+// An area luminaire: a rectangle centred at `position`, emitting into the half-space of `normal`.
+struct Luminaire {
+  std::string name;
+  Vec3 position{0.0};
+  Vec3 normal{0.0, 0.0, -1.0};
+  Vec3 u_axis{1.0, 0.0, 0.0};  // in-plane direction of `width`
+  double width = 0.6;
+  double height = 0.6;
+  Rgb power{100.0, 100.0, 100.0};  // radiant power per channel, watts
+  std::uint32_t circuit = 0;
+};
+
+// A light circuit: luminaires switched and dimmed together by one dimmer channel.
+struct Circuit {
+  std::string name;
+  double default_level = 1.0;
+};
+
+struct Model {
+  Vec3 origin{0.0};  // world position of local (0,0,0), metres
+  std::vector<Polygon> polygons;
+  std::vector<Material> materials;
+  std::vector<std::string> groups;
+  std::vector<Luminaire> luminaires;
+  std::vector<Circuit> circuits;
+
+  // Returns the index of the group with this name, adding it when new.
+  std::uint32_t group_index(const std::string& name);
+};
+
+struct Bounds {
+  Vec3 min{1e300};
+  Vec3 max{-1e300};
+  void add(const Vec3& p);
+  [[nodiscard]] bool empty() const { return min.x > max.x; }
+  [[nodiscard]] Vec3 size() const { return max - min; }
+  [[nodiscard]] Vec3 centre() const { return (min + max) * 0.5; }
+};
+
+[[nodiscard]] Bounds bounds_of(const Model& model);
+
+}  // namespace walk::model

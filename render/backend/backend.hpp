@@ -1,0 +1,38 @@
+#pragma once
+// A GL 3.3 core context plus somewhere to draw: an offscreen buffer (OSMesa, EGL) or a window (GLFW).
+// create() throws walk::Error with a clear message when the backend is not compiled in or cannot start.
+#include <memory>
+#include <string>
+
+namespace walk::render {
+
+enum class BackendKind { Auto, OSMesa, EGL, GLFW };
+
+// "auto", "osmesa", "egl", "glfw"; throws walk::Error naming the accepted values otherwise.
+[[nodiscard]] BackendKind parse_backend_kind(const std::string& text);
+[[nodiscard]] const char* backend_kind_name(BackendKind kind);
+
+struct BackendOptions {
+  BackendKind kind = BackendKind::Auto;  // Auto: GLFW when a display is set, else EGL, else OSMesa
+  int width = 1280;
+  int height = 720;
+  bool fullscreen = false;
+  int monitor = 0;
+  std::string title = "Walkthrough";
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  [[nodiscard]] virtual const char* name() const = 0;
+  [[nodiscard]] virtual int width() const = 0;
+  [[nodiscard]] virtual int height() const = 0;
+  virtual void make_current() = 0;
+  virtual void present() {}                                   // swap buffers for a window; headless: no-op
+  [[nodiscard]] virtual bool close_requested() { return false; }  // window closed by the user
+  virtual void poll_events() {}
+
+  static std::unique_ptr<Backend> create(const BackendOptions& options);
+};
+
+}  // namespace walk::render

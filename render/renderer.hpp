@@ -1,0 +1,61 @@
+#pragma once
+// Draws a bundle: static buffers uploaded once, the PVS of the eye's cell, circuits mixed by dimmer levels in
+// the vertex shader (a dimmer change shows in the next frame with no re-upload). Needs a current GL context.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "model/bundle.hpp"
+
+namespace walk::render {
+
+// A camera in the bundle's local coordinates (metres, z up).
+struct View {
+  glm::dvec3 eye{0.0};
+  glm::dvec3 forward{1.0, 0.0, 0.0};
+  glm::dvec3 up{0.0, 0.0, 1.0};
+  double fov_y_degrees = 60.0;
+  double near_plane = 0.05;
+  double far_plane = 500.0;
+};
+
+// Top row first, RGBA8.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+  [[nodiscard]] const std::uint8_t* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
+};
+
+struct FrameStats {
+  std::uint32_t cell = 0;
+  std::uint32_t polygons_drawn = 0;
+  std::uint32_t triangles_drawn = 0;
+};
+
+class Renderer {
+ public:
+  explicit Renderer(const model::Bundle& bundle);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // One level per circuit, 0..1; missing entries keep their previous level.
+  void set_dimmers(std::span<const float> levels);
+  void draw(const View& view, int width, int height);
+  [[nodiscard]] Image read_pixels(int width, int height) const;
+  [[nodiscard]] const FrameStats& last_stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Throws walk::Error naming the path when it cannot be written.
+void write_png(const std::string& path, const Image& image);
+
+}  // namespace walk::render

@@ -1,0 +1,12 @@
+#pragma once
+// Each `walk` subcommand registers itself on the app; the callback runs it and returns the exit code
+// through `exit_code`.
+#include <CLI/CLI.hpp>
+
+namespace walk::tools {
+
+void add_compile_command(CLI::App& app, int& exit_code);
+void add_inspect_command(CLI::App& app, int& exit_code);
+void add_render_command(CLI::App& app, int& exit_code);
+
+}  // namespace walk::tools

@@ -1,0 +1,28 @@
+// walk: the display compiler and its companions (compile, inspect, render).
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+
+#include "model/error.hpp"
+#include "tools/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"walk: compile, inspect and render Walkthrough bundles"};
+  app.require_subcommand(1);
+  bool verbose = false;
+  app.add_flag("-v,--verbose", verbose, "Log each stage as it runs");
+  int exit_code = 0;
+  walk::tools::add_compile_command(app, exit_code);
+  walk::tools::add_inspect_command(app, exit_code);
+  walk::tools::add_render_command(app, exit_code);
+  app.parse_complete_callback([&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::warn); });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const walk::Error& e) {
+    std::cerr << "walk: error: " << e.what() << "\n";
+    return 1;
+  }
+  return exit_code;
+}
