@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <glm/common.hpp>
+
 namespace walk::model {
 
 const char* role_name(Role role) {

@@ -1,0 +1,305 @@
+#include "model/bundle.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "model/error.hpp"
+
+namespace walk::model {
+namespace {
+
+std::uint32_t crc_of(const void* data, std::uint64_t size) {
+  uLong crc = crc32(0L, Z_NULL, 0);
+  const auto* bytes = static_cast<const Bytef*>(data);
+  while (size > 0) {  // zlib takes uInt lengths
+    const uInt chunk = static_cast<uInt>(std::min<std::uint64_t>(size, 1u << 30));
+    crc = crc32(crc, bytes, chunk);
+    bytes += chunk;
+    size -= chunk;
+  }
+  return static_cast<std::uint32_t>(crc);
+}
+
+std::string tag_name(std::uint32_t t) {
+  std::string s(4, ' ');
+  for (int i = 0; i < 4; ++i) {
+    const char c = static_cast<char>((t >> (8 * i)) & 0xff);
+    s[i] = (c >= 32 && c < 127) ? c : '?';
+  }
+  return s;
+}
+
+std::uint64_t align_up(std::uint64_t v) { return (v + kSectionAlignment - 1) / kSectionAlignment * kSectionAlignment; }
+
+struct PendingSection {
+  std::uint32_t tag;
+  std::uint32_t record_size;
+  const void* data;
+  std::uint64_t count;
+};
+
+template <typename T>
+PendingSection pending(std::uint32_t tag, const std::vector<T>& v) {
+  return {tag, sizeof(T), v.data(), v.size()};
+}
+
+// Closes the descriptor and removes the temporary file unless released: no partial bundle is ever left.
+class TempFile {
+ public:
+  explicit TempFile(std::string path) : path_(std::move(path)) {
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  }
+  ~TempFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!released_) ::unlink(path_.c_str());
+  }
+  [[nodiscard]] int fd() const { return fd_; }
+  void release() { released_ = true; }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  bool released_ = false;
+};
+
+void write_all(int fd, const void* data, std::uint64_t size, const std::string& path) {
+  const auto* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, p, size);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw Error(located(path, 0, std::string("cannot write bundle: ") + std::strerror(errno),
+                          "check free disk space and folder permissions"));
+    }
+    p += n;
+    size -= static_cast<std::uint64_t>(n);
+  }
+}
+
+}  // namespace
+
+std::uint32_t BundleContents::add_string(std::string_view s) {
+  if (s.empty()) return 0;
+  const auto offset = static_cast<std::uint32_t>(strings.size());
+  strings.append(s);
+  strings.push_back('\0');
+  return offset;
+}
+
+void write_bundle(const std::string& path, const BundleContents& c) {
+  const std::vector<MetaRecord> meta{c.meta};
+  const std::vector<PendingSection> sections{
+      pending(section::kMeta, meta),           pending(section::kVertices, c.vertices),
+      pending(section::kIndices, c.indices),   pending(section::kPolygons, c.polygons),
+      pending(section::kMaterials, c.materials), pending(section::kGroups, c.groups),
+      pending(section::kCircuits, c.circuits), pending(section::kLuminaires, c.luminaires),
+      pending(section::kLight, c.light),       pending(section::kCells, c.cells),
+      pending(section::kNodes, c.nodes),       pending(section::kPvs, c.pvs),
+      pending(section::kStages, c.stages),
+      PendingSection{section::kStrings, 1, c.strings.data(), c.strings.size()}};
+
+  std::vector<SectionEntry> table(sections.size());
+  std::uint64_t offset = align_up(sizeof(FileHeader) + sizeof(SectionEntry) * sections.size());
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    const auto& s = sections[i];
+    const std::uint64_t bytes = s.record_size * s.count;
+    table[i] = SectionEntry{s.tag, s.record_size, offset, s.count, crc_of(s.data, bytes), 0};
+    offset = align_up(offset + bytes);
+  }
+  FileHeader header{kBundleMagic, kBundleVersion, static_cast<std::uint32_t>(sections.size()), offset,
+                    crc_of(table.data(), table.size() * sizeof(SectionEntry)), 0};
+
+  const std::string temp = path + ".tmp." + std::to_string(::getpid());
+  TempFile file(temp);
+  if (file.fd() < 0)
+    throw Error(located(path, 0, std::string("cannot create bundle: ") + std::strerror(errno),
+                        "check that the output folder exists and is writable"));
+  static const char zeros[kSectionAlignment] = {};
+  std::uint64_t written = 0;
+  auto put = [&](const void* data, std::uint64_t size) {
+    write_all(file.fd(), data, size, path);
+    written += size;
+  };
+  auto pad_to = [&](std::uint64_t target) { put(zeros, target - written); };
+  put(&header, sizeof header);
+  put(table.data(), table.size() * sizeof(SectionEntry));
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    pad_to(table[i].offset);
+    put(sections[i].data, sections[i].record_size * sections[i].count);
+  }
+  pad_to(header.file_size);
+  if (::fsync(file.fd()) != 0 || ::rename(temp.c_str(), path.c_str()) != 0)
+    throw Error(located(path, 0, std::string("cannot finish bundle: ") + std::strerror(errno)));
+  file.release();
+}
+
+std::unique_ptr<Bundle> Bundle::open(const std::string& path) {
+  std::unique_ptr<Bundle> b(new Bundle());
+  b->path_ = path;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0)
+    throw Error(located(path, 0, std::string("cannot open bundle: ") + std::strerror(errno),
+                        "run `walk compile scene.toml -o " + path + "` first"));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || st.st_size < static_cast<off_t>(sizeof(FileHeader))) {
+    ::close(fd);
+    throw Error(located(path, 0, "not a bundle: file is too short", "recompile it with `walk compile`"));
+  }
+  b->size_ = static_cast<std::uint64_t>(st.st_size);
+  b->map_ = ::mmap(nullptr, b->size_, PROT_READ, MAP_PRIVATE, fd, 0);
+  ::close(fd);
+  if (b->map_ == MAP_FAILED) {
+    b->map_ = nullptr;
+    throw Error(located(path, 0, std::string("cannot map bundle: ") + std::strerror(errno)));
+  }
+  b->validate();
+  return b;
+}
+
+Bundle::~Bundle() {
+  if (map_) ::munmap(map_, size_);
+}
+
+std::string_view Bundle::string(std::uint32_t offset) const {
+  if (offset >= strings_.size()) return {};
+  return std::string_view(strings_.data() + offset);
+}
+
+void Bundle::validate() {
+  const auto* base = static_cast<const char*>(map_);
+  auto fail = [&](const std::string& what) {
+    throw Error(located(path_, 0, "corrupt bundle: " + what, "recompile it with `walk compile`"));
+  };
+  FileHeader header;
+  std::memcpy(&header, base, sizeof header);
+  if (header.magic != kBundleMagic) fail("bad magic (not a .walk bundle)");
+  if (header.version != kBundleVersion)
+    fail("version " + std::to_string(header.version) + ", this build reads version " +
+         std::to_string(kBundleVersion));
+  if (header.file_size != size_)
+    fail("header says " + std::to_string(header.file_size) + " bytes, file has " + std::to_string(size_));
+  if (header.section_count > 64) fail("implausible section count " + std::to_string(header.section_count));
+  const std::uint64_t table_bytes = std::uint64_t(header.section_count) * sizeof(SectionEntry);
+  if (sizeof(FileHeader) + table_bytes > size_) fail("section table runs past the end of the file");
+  const auto* table = reinterpret_cast<const SectionEntry*>(base + sizeof(FileHeader));
+  if (crc_of(table, table_bytes) != header.table_crc) fail("section table checksum mismatch");
+
+  std::map<std::uint32_t, const SectionEntry*> by_tag;
+  for (std::uint32_t i = 0; i < header.section_count; ++i) {
+    const SectionEntry& e = table[i];
+    const std::string name = "section " + tag_name(e.tag);
+    if (e.record_size == 0) fail(name + " has zero record size");
+    if (e.offset % kSectionAlignment != 0) fail(name + " is misaligned");
+    if (e.count > size_ / e.record_size) fail(name + " count " + std::to_string(e.count) + " is too large");
+    const std::uint64_t bytes = e.count * e.record_size;
+    if (e.offset > size_ || bytes > size_ - e.offset) fail(name + " runs past the end of the file");
+    if (crc_of(base + e.offset, bytes) != e.crc) fail(name + " checksum mismatch");
+    if (!by_tag.emplace(e.tag, &e).second) fail(name + " appears twice");
+  }
+  auto get = [&]<typename T>(std::uint32_t t, std::span<const T>& out, bool required) {
+    auto it = by_tag.find(t);
+    if (it == by_tag.end()) {
+      if (required) fail("section " + tag_name(t) + " is missing");
+      return;
+    }
+    if (it->second->record_size != sizeof(T))
+      fail("section " + tag_name(t) + " has record size " + std::to_string(it->second->record_size) +
+           ", expected " + std::to_string(sizeof(T)));
+    out = std::span<const T>(reinterpret_cast<const T*>(base + it->second->offset), it->second->count);
+  };
+  std::span<const MetaRecord> meta;
+  get(section::kMeta, meta, true);
+  if (meta.size() != 1) fail("META must hold exactly one record");
+  meta_ = &meta[0];
+  get(section::kVertices, vertices_, true);
+  get(section::kIndices, indices_, true);
+  get(section::kPolygons, polygons_, true);
+  get(section::kMaterials, materials_, true);
+  get(section::kGroups, groups_, true);
+  get(section::kCircuits, circuits_, true);
+  get(section::kLuminaires, luminaires_, true);
+  get(section::kLight, light_, true);
+  get(section::kCells, cells_, true);
+  get(section::kNodes, nodes_, true);
+  get(section::kPvs, pvs_, true);
+  get(section::kStages, stages_, true);
+  get(section::kStrings, strings_, true);
+
+  // Cross-references: after this, no index in the bundle can point outside its target.
+  if (strings_.empty() || strings_.back() != '\0') fail("string table is not NUL-terminated");
+  auto check_string = [&](std::uint32_t offset, const char* what) {
+    if (offset >= strings_.size()) fail(std::string(what) + " name offset out of range");
+  };
+  if (meta_->circuit_count != circuits_.size()) fail("META circuit count disagrees with CIRC");
+  if (!std::isfinite(meta_->exposure) || meta_->exposure <= 0.0f) fail("META exposure must be positive");
+  if (light_.size() != vertices_.size() * circuits_.size() * 3)
+    fail("LGHT holds " + std::to_string(light_.size()) + " floats, expected vertices*circuits*3");
+  for (float v : light_)
+    if (!std::isfinite(v) || v < 0.0f) fail("LGHT holds a negative or non-finite radiosity");
+  if (indices_.size() % 3 != 0) fail("INDX is not a whole number of triangles");
+  for (std::uint32_t i : indices_)
+    if (i >= vertices_.size()) fail("INDX refers to vertex " + std::to_string(i) + " of " +
+                                    std::to_string(vertices_.size()));
+  for (const auto& v : vertices_)
+    if (v.polygon >= polygons_.size()) fail("VERT refers to a polygon out of range");
+  for (std::size_t i = 0; i < polygons_.size(); ++i) {
+    const auto& p = polygons_[i];
+    const std::string name = "POLY " + std::to_string(i);
+    if (p.first_index % 3 != 0 || p.index_count % 3 != 0) fail(name + " index range is not whole triangles");
+    if (p.first_index > indices_.size() || p.index_count > indices_.size() - p.first_index)
+      fail(name + " index range runs past INDX");
+    if (p.first_vertex > vertices_.size() || p.vertex_count > vertices_.size() - p.first_vertex)
+      fail(name + " vertex range runs past VERT");
+    if (p.material >= materials_.size()) fail(name + " material out of range");
+    if (p.group >= groups_.size() && !groups_.empty()) fail(name + " group out of range");
+    if (p.role > 4) fail(name + " has an unknown role");
+    check_string(p.name, "POLY");
+  }
+  for (const auto& m : materials_) check_string(m.name, "MATL");
+  for (const auto& g : groups_) check_string(g.name, "GRPS");
+  for (const auto& c : circuits_) check_string(c.name, "CIRC");
+  for (const auto& l : luminaires_) {
+    check_string(l.name, "LUMS");
+    if (l.circuit >= circuits_.size()) fail("LUMS refers to a circuit out of range");
+  }
+  for (const auto& s : stages_) check_string(s.name, "STAG");
+  if (cells_.empty()) fail("CELL is empty: a bundle has at least one cell");
+  for (std::size_t i = 0; i < cells_.size(); ++i) {
+    const auto& c = cells_[i];
+    if (c.pvs_first > pvs_.size() || c.pvs_count > pvs_.size() - c.pvs_first)
+      fail("CELL " + std::to_string(i) + " PVS range runs past PVSL");
+  }
+  for (std::uint32_t id : pvs_)
+    if (id >= polygons_.size()) fail("PVSL refers to a polygon out of range");
+  const auto cell_count = static_cast<std::int64_t>(cells_.size());
+  const auto node_count = static_cast<std::int64_t>(nodes_.size());
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    for (std::int32_t child : {nodes_[i].front, nodes_[i].back}) {
+      // Children point forward (to a later node) or to a cell, so the tree walk always ends.
+      const bool cell_ok = child < 0 && -std::int64_t(child) - 1 < cell_count;
+      const bool node_ok = child > std::int64_t(i) && child < node_count;
+      if (!cell_ok && !node_ok) fail("NODE " + std::to_string(i) + " has an invalid child");
+    }
+  }
+}
+
+std::uint32_t Bundle::locate_cell(const double p[3]) const {
+  if (nodes_.empty()) return 0;
+  std::int32_t node = 0;
+  while (node >= 0) {
+    const auto& n = nodes_[static_cast<std::size_t>(node)];
+    const double side = n.plane[0] * p[0] + n.plane[1] * p[1] + n.plane[2] * p[2] + n.plane[3];
+    node = side >= 0.0 ? n.front : n.back;
+  }
+  return static_cast<std::uint32_t>(-node - 1);
+}
+
+}  // namespace walk::model
