@@ -37,7 +37,9 @@ std::string tag_name(std::uint32_t t) {
   return s;
 }
 
-std::uint64_t align_up(std::uint64_t v) { return (v + kSectionAlignment - 1) / kSectionAlignment * kSectionAlignment; }
+std::uint64_t align_up(std::uint64_t v) {
+  return (v + kSectionAlignment - 1) / kSectionAlignment * kSectionAlignment;
+}
 
 struct PendingSection {
   std::uint32_t tag;
@@ -97,12 +99,18 @@ std::uint32_t BundleContents::add_string(std::string_view s) {
 void write_bundle(const std::string& path, const BundleContents& c) {
   const std::vector<MetaRecord> meta{c.meta};
   const std::vector<PendingSection> sections{
-      pending(section::kMeta, meta),           pending(section::kVertices, c.vertices),
-      pending(section::kIndices, c.indices),   pending(section::kPolygons, c.polygons),
-      pending(section::kMaterials, c.materials), pending(section::kGroups, c.groups),
-      pending(section::kCircuits, c.circuits), pending(section::kLuminaires, c.luminaires),
-      pending(section::kLight, c.light),       pending(section::kCells, c.cells),
-      pending(section::kNodes, c.nodes),       pending(section::kPvs, c.pvs),
+      pending(section::kMeta, meta),
+      pending(section::kVertices, c.vertices),
+      pending(section::kIndices, c.indices),
+      pending(section::kPolygons, c.polygons),
+      pending(section::kMaterials, c.materials),
+      pending(section::kGroups, c.groups),
+      pending(section::kCircuits, c.circuits),
+      pending(section::kLuminaires, c.luminaires),
+      pending(section::kLight, c.light),
+      pending(section::kCells, c.cells),
+      pending(section::kNodes, c.nodes),
+      pending(section::kPvs, c.pvs),
       pending(section::kStages, c.stages),
       PendingSection{section::kStrings, 1, c.strings.data(), c.strings.size()}};
 
@@ -114,8 +122,12 @@ void write_bundle(const std::string& path, const BundleContents& c) {
     table[i] = SectionEntry{s.tag, s.record_size, offset, s.count, crc_of(s.data, bytes), 0};
     offset = align_up(offset + bytes);
   }
-  FileHeader header{kBundleMagic, kBundleVersion, static_cast<std::uint32_t>(sections.size()), offset,
-                    crc_of(table.data(), table.size() * sizeof(SectionEntry)), 0};
+  FileHeader header{kBundleMagic,
+                    kBundleVersion,
+                    static_cast<std::uint32_t>(sections.size()),
+                    offset,
+                    crc_of(table.data(), table.size() * sizeof(SectionEntry)),
+                    0};
 
   const std::string temp = path + ".tmp." + std::to_string(::getpid());
   TempFile file(temp);
@@ -246,8 +258,8 @@ void Bundle::validate() {
     if (!std::isfinite(v) || v < 0.0f) fail("LGHT holds a negative or non-finite radiosity");
   if (indices_.size() % 3 != 0) fail("INDX is not a whole number of triangles");
   for (std::uint32_t i : indices_)
-    if (i >= vertices_.size()) fail("INDX refers to vertex " + std::to_string(i) + " of " +
-                                    std::to_string(vertices_.size()));
+    if (i >= vertices_.size())
+      fail("INDX refers to vertex " + std::to_string(i) + " of " + std::to_string(vertices_.size()));
   for (const auto& v : vertices_)
     if (v.polygon >= polygons_.size()) fail("VERT refers to a polygon out of range");
   for (std::size_t i = 0; i < polygons_.size(); ++i) {

@@ -41,8 +41,8 @@ struct MetaRecord {
   double origin[3];  // world position of the local origin, metres
   float bounds_min[3];
   float bounds_max[3];
-  float ambient;     // uniform ambient radiosity fraction added at display time (W/m2 per unit albedo)
-  float exposure;    // radiosity (W/m2) that maps to display white
+  float ambient;   // uniform ambient radiosity fraction added at display time (W/m2 per unit albedo)
+  float exposure;  // radiosity (W/m2) that maps to display white
   std::uint64_t scene_hash;
   std::uint32_t circuit_count;
   std::uint32_t reserved;
@@ -52,7 +52,7 @@ static_assert(sizeof(MetaRecord) == 72);
 struct VertexRecord {
   float position[3];  // local coordinates, metres
   float normal[3];
-  float albedo[3];    // diffuse reflectance of the polygon
+  float albedo[3];  // diffuse reflectance of the polygon
   std::uint32_t polygon;
 };
 static_assert(sizeof(VertexRecord) == 40);

@@ -1,18 +1,22 @@
 #include "model/model.hpp"
 
 #include <algorithm>
-
 #include <glm/common.hpp>
 
 namespace walk::model {
 
 const char* role_name(Role role) {
   switch (role) {
-    case Role::Opaque: return "opaque";
-    case Role::Glass: return "glass";
-    case Role::Opening: return "opening";
-    case Role::Luminaire: return "luminaire";
-    case Role::Ignored: return "ignored";
+    case Role::Opaque:
+      return "opaque";
+    case Role::Glass:
+      return "glass";
+    case Role::Opening:
+      return "opening";
+    case Role::Luminaire:
+      return "luminaire";
+    case Role::Ignored:
+      return "ignored";
   }
   return "unknown";
 }

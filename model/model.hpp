@@ -3,10 +3,9 @@
 // Coordinates are double precision metres relative to `origin` (world = origin + local), so that models
 // authored far from the world origin keep full precision; rendering converts local coordinates to float.
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 namespace walk::model {
 
@@ -28,8 +27,8 @@ struct Material {
 // A planar polygon, counter-clockwise seen from the side its normal points to. `group` names the room/zone
 // it bounds (the DXF layer for EnergyPlus files); `source` is where it came from, for error messages.
 struct Polygon {
-  std::vector<Vec3> vertices;              // outer boundary, counter-clockwise about the normal
-  std::vector<std::vector<Vec3>> holes;    // clockwise about the normal, inside the outer boundary
+  std::vector<Vec3> vertices;            // outer boundary, counter-clockwise about the normal
+  std::vector<std::vector<Vec3>> holes;  // clockwise about the normal, inside the outer boundary
   std::uint32_t material = 0;
   Role role = Role::Opaque;
   std::uint32_t group = 0;  // index into Model::groups

@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
   walk::tools::add_compile_command(app, exit_code);
   walk::tools::add_inspect_command(app, exit_code);
   walk::tools::add_render_command(app, exit_code);
-  app.parse_complete_callback([&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::warn); });
+  app.parse_complete_callback(
+      [&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::warn); });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

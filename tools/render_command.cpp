@@ -35,7 +35,8 @@ int run_render(const RenderArgs& args) {
   int width = 0, height = 0;
   char x = 0;
   std::istringstream size(args.size);
-  if (!(size >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0 || width > 16384 || height > 16384)
+  if (!(size >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0 || width > 16384 ||
+      height > 16384)
     throw Error("--size '" + args.size + "' is not WIDTHxHEIGHT (e.g. 1280x720)");
   auto bundle = model::Bundle::open(args.bundle);
   render::BackendOptions options;

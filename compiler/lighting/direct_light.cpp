@@ -1,0 +1,94 @@
+#include "compiler/lighting/direct_light.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <random>
+#include <thread>
+
+namespace walk::compiler {
+namespace {
+
+// Shadow rays start this far off the surface along its normal, metres: above double round-off at building
+// scale (1e-12 m) and far below any gap a real building has, so coincident back-to-back walls never
+// self-shadow.
+constexpr double kShadowOffset = 1e-4;
+// Squared distance floor, m^2: keeps the inverse-square law finite for samples touching a luminaire.
+constexpr double kMinDistanceSquared = 1e-4;
+
+// Stratified (jittered) points on the luminaire rectangle: sqrt(n) x sqrt(n) strata when n is square.
+void panel_points(const model::Luminaire& l, int n, std::mt19937_64& rng, std::vector<model::Vec3>& out) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(double(n)))));
+  const int cols = side, rows = (n + side - 1) / side;
+  const model::Vec3 u = glm::normalize(l.u_axis);
+  const model::Vec3 v = glm::normalize(glm::cross(l.normal, u));
+  out.clear();
+  for (int i = 0; i < n; ++i) {
+    const double su = ((i % cols) + u01(rng)) / cols - 0.5;
+    const double sv = ((i / cols) + u01(rng)) / rows - 0.5;
+    out.push_back(l.position + u * (su * l.width) + v * (sv * l.height));
+  }
+}
+
+}  // namespace
+
+std::vector<float> direct_light(std::span<const SurfaceSample> samples,
+                                const std::vector<model::Luminaire>& luminaires, std::size_t circuit_count,
+                                const TriangleBvh& occluders, const DirectLightOptions& options,
+                                DirectLightStats* stats) {
+  std::vector<float> out(samples.size() * circuit_count * 3, 0.0f);
+  std::atomic<std::uint64_t> rays{0}, blocked{0};
+  std::atomic<std::size_t> next{0};
+  constexpr std::size_t kChunk = 256;
+  auto worker = [&] {
+    std::vector<model::Vec3> points;
+    std::uint64_t my_rays = 0, my_blocked = 0;
+    for (;;) {
+      const std::size_t begin = next.fetch_add(kChunk);
+      if (begin >= samples.size()) break;
+      const std::size_t end = std::min(samples.size(), begin + kChunk);
+      for (std::size_t s = begin; s < end; ++s) {
+        const SurfaceSample& p = samples[s];
+        std::mt19937_64 rng(0x9e3779b97f4a7c15ull ^ s);  // per sample: same result for any thread count
+        const model::Vec3 origin = p.position + p.normal * kShadowOffset;
+        for (const auto& l : luminaires) {
+          const model::Vec3 ln = glm::normalize(l.normal);
+          if (glm::dot(p.position - l.position, ln) <= 0.0) continue;  // behind the panel
+          panel_points(l, options.samples_per_luminaire, rng, points);
+          double sum = 0.0;
+          for (const auto& q : points) {
+            const model::Vec3 d = q - origin;
+            const double r2 = std::max(glm::dot(d, d), kMinDistanceSquared);
+            const double r = std::sqrt(r2);
+            const double cos_r = glm::dot(p.normal, d) / r;
+            const double cos_e = -glm::dot(ln, d) / r;
+            if (cos_r <= 0.0 || cos_e <= 0.0) continue;
+            ++my_rays;
+            if (occluders.occluded(origin, d, 0.0, 1.0)) {
+              ++my_blocked;
+              continue;
+            }
+            sum += cos_r * cos_e / r2;
+          }
+          // Lambertian panel: radiance Phi/(pi A); each point stands for A/n of its area.
+          const double irradiance_per_watt = sum / (std::numbers::pi * points.size());
+          float* b = &out[(s * circuit_count + l.circuit) * 3];
+          for (int c = 0; c < 3; ++c)
+            b[c] += static_cast<float>(p.albedo[c] * l.power[c] * irradiance_per_watt);
+        }
+      }
+    }
+    rays += my_rays;
+    blocked += my_blocked;
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::max(1u, options.threads); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (stats) *stats = {rays.load(), blocked.load()};
+  return out;
+}
+
+}  // namespace walk::compiler

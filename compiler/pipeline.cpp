@@ -1,0 +1,327 @@
+#include "compiler/pipeline.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <glm/geometric.hpp>
+
+#include "compiler/geometry/mesher.hpp"
+#include "compiler/geometry/openings.hpp"
+#include "compiler/import/dxf_reader.hpp"
+#include "compiler/lighting/direct_light.hpp"
+#include "compiler/scene/apply_rules.hpp"
+#include "compiler/scene/luminaires.hpp"
+#include "model/error.hpp"
+
+namespace walk::compiler {
+namespace {
+
+// Reflectance given to luminaire panels when they are drawn (their emission dominates anyway).
+constexpr double kPanelReflectance = 0.8;
+// Automatic exposure maps this percentile of lit-surface radiosity to 1/kExposureHeadroom of white.
+constexpr double kExposurePercentile = 0.95;
+constexpr double kExposureHeadroom = 0.8;
+
+std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t size) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+  return h;
+}
+
+class StageTimer {
+ public:
+  StageTimer(std::vector<StageReport>& stages, std::string name) : stages_(stages) {
+    stages_.push_back({std::move(name)});
+    start_ = std::chrono::steady_clock::now();
+  }
+  StageReport& report() { return stages_.back(); }
+  void done(std::uint64_t in, std::uint64_t out, std::string detail = {}) {
+    auto& r = stages_.back();
+    r.ran = true;
+    r.items_in = in;
+    r.items_out = out;
+    r.detail = std::move(detail);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    spdlog::info("stage {}: {} -> {} in {:.3f} s {}", r.name, in, out, r.seconds, r.detail);
+  }
+  void skipped(std::string why) {
+    stages_.back().detail = std::move(why);
+    spdlog::info("stage {}: not run ({})", stages_.back().name, stages_.back().detail);
+  }
+
+ private:
+  std::vector<StageReport>& stages_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+bool drawn(model::Role r) {
+  return r == model::Role::Opaque || r == model::Role::Glass;
+}
+
+model::Polygon panel_polygon(const model::Luminaire& l) {
+  const model::Vec3 u = glm::normalize(l.u_axis) * (0.5 * l.width);
+  const model::Vec3 v = glm::normalize(glm::cross(l.normal, l.u_axis)) * (0.5 * l.height);
+  model::Polygon p;
+  p.vertices = {l.position - u - v, l.position + u - v, l.position + u + v, l.position - u + v};
+  p.role = model::Role::Luminaire;
+  p.name = l.name;
+  return p;
+}
+
+}  // namespace
+
+std::uint64_t scene_hash(const SceneConfig& config) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  h = fnv1a(h, &kCompilerRevision, sizeof kCompilerRevision);
+  h = fnv1a(h, config.text.data(), config.text.size());
+  std::ifstream in(config.model_file, std::ios::binary);
+  std::vector<char> buffer(1 << 16);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    h = fnv1a(h, buffer.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  return h;
+}
+
+CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options) {
+  CompileResult result;
+  auto& stages = result.stages;
+  model::Model model;
+  {
+    StageTimer t(stages, "import");
+    model = read_dxf(config.model_file, DxfOptions{config.metres_per_unit});
+    t.done(0, model.polygons.size(), config.model_file);
+  }
+  {
+    StageTimer t(stages, "recentre");
+    const model::Bounds b = bounds_of(model);
+    // A whole-metre local origin at the model's centre: float rendering then keeps sub-millimetre precision
+    // even for drawings placed far from the world origin.
+    model.origin = glm::round(b.centre());
+    for (auto& p : model.polygons) {
+      for (auto& v : p.vertices) v -= model.origin;
+      for (auto& hole : p.holes)
+        for (auto& v : hole) v -= model.origin;
+    }
+    t.done(model.polygons.size(), model.polygons.size());
+  }
+  {
+    StageTimer t(stages, "rules");
+    const auto s = apply_rules(model, config);
+    using model::Role;
+    t.done(model.polygons.size() + s.dropped, model.polygons.size(),
+           fmt::format("opaque {} glass {} opening {} dropped {} flipped {}", s.per_role[0], s.per_role[1],
+                       s.per_role[2], s.dropped, s.flipped));
+    if (std::none_of(model.polygons.begin(), model.polygons.end(),
+                     [](const auto& p) { return drawn(p.role); }))
+      throw Error(located(config.model_file, 0,
+                          "empty model: no opaque or glass faces after the scene's rules",
+                          "check the [[rules]] in " + config.path));
+  }
+  {
+    StageTimer t(stages, "openings");
+    const bool needed = std::any_of(model.polygons.begin(), model.polygons.end(), [](const auto& p) {
+      return p.role == model::Role::Opening || p.role == model::Role::Glass;
+    });
+    if (!needed) {
+      t.skipped("scene has no openings or glass");
+    } else {
+      const std::size_t before = model.polygons.size();
+      const auto s = cut_openings(model);
+      t.done(before, model.polygons.size(),
+             fmt::format("hosts cut {} openings {} glass {} unmatched {}", s.hosts_cut, s.openings_cut,
+                         s.glass_cut, s.unmatched));
+    }
+  }
+  {
+    StageTimer t(stages, "luminaires");
+    if (!config.panels.enabled && config.luminaires.empty()) {
+      t.skipped("scene names no luminaires");
+    } else {
+      const auto s = add_luminaires(model, config);
+      t.done(model.groups.size(), model.luminaires.size(),
+             fmt::format("per-room {} explicit {} rooms without ceiling {} circuits {}", s.added_per_group,
+                         s.explicit_panels, s.groups_without_ceiling, model.circuits.size()));
+    }
+  }
+
+  auto& out = result.bundle;
+  std::vector<SurfaceSample> samples;        // one per vertex of a lit polygon
+  std::vector<std::uint32_t> sample_vertex;  // bundle vertex of each sample
+  std::vector<Triangle> occluders;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> panel_polygons;  // (bundle polygon, luminaire)
+  {
+    StageTimer t(stages, "mesh");
+    std::vector<model::Polygon> panels;
+    for (const auto& l : model.luminaires) panels.push_back(panel_polygon(l));
+    auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire) {
+      const PolygonMesh mesh =
+          mesh_polygon(poly, poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid);
+      if (mesh.triangles.empty()) return;
+      const auto id = static_cast<std::uint32_t>(out.polygons.size());
+      const auto first_vertex = static_cast<std::uint32_t>(out.vertices.size());
+      const model::Rgb albedo = poly.role == model::Role::Luminaire
+                                    ? model::Rgb(kPanelReflectance)
+                                    : model.materials[poly.material].reflectance;
+      for (const auto& v : mesh.vertices) {
+        model::VertexRecord r{};
+        for (int a = 0; a < 3; ++a) {
+          r.position[a] = static_cast<float>(v[a]);
+          r.normal[a] = static_cast<float>(mesh.normal[a]);
+          r.albedo[a] = static_cast<float>(albedo[a]);
+        }
+        r.polygon = id;
+        if (poly.role != model::Role::Luminaire) {
+          samples.push_back({v, mesh.normal, albedo});
+          sample_vertex.push_back(static_cast<std::uint32_t>(out.vertices.size()));
+        }
+        out.vertices.push_back(r);
+      }
+      const auto first_index = static_cast<std::uint32_t>(out.indices.size());
+      for (std::uint32_t i : mesh.triangles) out.indices.push_back(first_vertex + i);
+      model::PolygonRecord rec{};
+      rec.first_index = first_index;
+      rec.index_count = static_cast<std::uint32_t>(mesh.triangles.size());
+      rec.first_vertex = first_vertex;
+      rec.vertex_count = static_cast<std::uint32_t>(mesh.vertices.size());
+      rec.material = poly.role == model::Role::Luminaire ? 0 : poly.material;
+      rec.group = poly.group;
+      rec.role = static_cast<std::uint32_t>(poly.role);
+      rec.name = out.add_string(poly.name);
+      out.polygons.push_back(rec);
+      if (luminaire != UINT32_MAX) {
+        out.luminaires[luminaire].name = rec.name;
+        panel_polygons.emplace_back(id, luminaire);
+      }
+      if (drawn(poly.role)) {  // occluders from the coarse triangulation: fewer triangles, same surface
+        const PolygonMesh coarse = mesh_polygon(poly, 0.0);
+        for (std::size_t i = 0; i + 2 < coarse.triangles.size(); i += 3)
+          occluders.push_back({coarse.vertices[coarse.triangles[i]], coarse.vertices[coarse.triangles[i + 1]],
+                               coarse.vertices[coarse.triangles[i + 2]], id});
+      }
+    };
+    for (const auto& l : model.luminaires) {
+      model::LuminaireRecord r{};
+      for (int a = 0; a < 3; ++a) {
+        r.position[a] = static_cast<float>(l.position[a]);
+        r.normal[a] = static_cast<float>(l.normal[a]);
+        r.u_axis[a] = static_cast<float>(l.u_axis[a]);
+        r.power[a] = static_cast<float>(l.power[a]);
+      }
+      r.width = static_cast<float>(l.width);
+      r.height = static_cast<float>(l.height);
+      r.circuit = l.circuit;
+      out.luminaires.push_back(r);
+    }
+    for (const auto& p : model.polygons)
+      if (drawn(p.role)) emit(p, UINT32_MAX);
+    for (std::uint32_t i = 0; i < panels.size(); ++i) emit(panels[i], i);
+    t.done(model.polygons.size() + panels.size(), out.polygons.size(),
+           fmt::format("{} vertices {} triangles grid {} m", out.vertices.size(), out.indices.size() / 3,
+                       config.lighting.grid));
+  }
+
+  const std::size_t circuits = model.circuits.size();
+  out.light.assign(out.vertices.size() * circuits * 3, 0.0f);
+  {
+    StageTimer t(stages, "light");
+    if (model.luminaires.empty()) {
+      t.skipped("no luminaires: display shows ambient light only");
+    } else {
+      const TriangleBvh bvh(std::move(occluders));
+      DirectLightStats s;
+      const auto light = direct_light(samples, model.luminaires, circuits, bvh,
+                                      {config.lighting.samples_per_luminaire, options.threads}, &s);
+      for (std::size_t i = 0; i < samples.size(); ++i)
+        std::copy_n(&light[i * circuits * 3], circuits * 3, &out.light[sample_vertex[i] * circuits * 3]);
+      // Panels glow with their exitance Phi/A in their own circuit.
+      for (const auto& [polygon, luminaire] : panel_polygons) {
+        const auto& poly = out.polygons[polygon];
+        const auto& l = out.luminaires[luminaire];
+        for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
+          for (int c = 0; c < 3; ++c)
+            out.light[(v * circuits + l.circuit) * 3 + c] = l.power[c] / (l.width * l.height);
+      }
+      t.done(samples.size(), s.shadow_rays,
+             fmt::format("{} shadow rays, {} occluded, {} luminaires, {} circuits", s.shadow_rays, s.occluded,
+                         model.luminaires.size(), circuits));
+    }
+  }
+
+  // Meta, materials, groups, circuits, the single cell.
+  model::Bounds local;
+  for (const auto& v : out.vertices) local.add({v.position[0], v.position[1], v.position[2]});
+  auto& meta = out.meta;
+  for (int a = 0; a < 3; ++a) {
+    meta.origin[a] = model.origin[a];
+    meta.bounds_min[a] = static_cast<float>(local.min[a]);
+    meta.bounds_max[a] = static_cast<float>(local.max[a]);
+  }
+  meta.ambient = static_cast<float>(config.lighting.ambient);
+  meta.scene_hash = scene_hash(config);
+  meta.circuit_count = static_cast<std::uint32_t>(circuits);
+  if (config.lighting.exposure) {
+    meta.exposure = static_cast<float>(*config.lighting.exposure);
+  } else {
+    std::vector<float> totals;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      float sum = 0.0f;
+      for (std::size_t c = 0; c < circuits * 3; ++c) sum += out.light[sample_vertex[i] * circuits * 3 + c];
+      if (sum > 0.0f) totals.push_back(sum / 3.0f);
+    }
+    float exposure = 1.0f;
+    if (!totals.empty()) {
+      auto nth = totals.begin() + static_cast<std::ptrdiff_t>(kExposurePercentile * (totals.size() - 1));
+      std::nth_element(totals.begin(), nth, totals.end());
+      exposure = static_cast<float>(*nth / kExposureHeadroom);
+    }
+    meta.exposure = std::max(exposure, 1e-6f);
+  }
+  for (const auto& m : model.materials)
+    out.materials.push_back(
+        {{float(m.reflectance.r), float(m.reflectance.g), float(m.reflectance.b)}, out.add_string(m.name)});
+  for (const auto& g : model.groups) out.groups.push_back({out.add_string(g)});
+  for (const auto& c : model.circuits)
+    out.circuits.push_back({out.add_string(c.name), float(c.default_level)});
+  {
+    StageTimer t(stages, "cells");
+    // Skeleton: one cell holding every drawn polygon. Issue 5 replaces this with the partition and PVS.
+    model::CellRecord cell{};
+    for (int a = 0; a < 3; ++a) {
+      cell.bounds_min[a] = meta.bounds_min[a];
+      cell.bounds_max[a] = meta.bounds_max[a];
+    }
+    cell.pvs_first = 0;
+    cell.pvs_count = static_cast<std::uint32_t>(out.polygons.size());
+    for (std::uint32_t i = 0; i < out.polygons.size(); ++i) out.pvs.push_back(i);
+    out.cells.push_back(cell);
+    t.done(out.polygons.size(), 1, "single cell");
+  }
+  for (const auto& s : stages)
+    out.stages.push_back(
+        {out.add_string(s.name), s.ran ? 1u : 0u, meta.scene_hash, s.seconds, s.items_in, s.items_out});
+  return result;
+}
+
+bool compile_to_file(const std::string& config_path, const std::string& output, bool force,
+                     std::vector<StageReport>* stages, const CompileOptions& options) {
+  const SceneConfig config = load_scene_config(config_path);
+  if (!force && std::filesystem::exists(output)) {
+    try {
+      const auto existing = model::Bundle::open(output);
+      if (existing->meta().scene_hash == scene_hash(config)) return false;
+    } catch (const Error&) {
+      // An unreadable old bundle is simply rebuilt.
+    }
+  }
+  CompileResult result = compile_scene(config, options);
+  model::write_bundle(output, result.bundle);
+  if (stages) *stages = std::move(result.stages);
+  return true;
+}
+
+}  // namespace walk::compiler

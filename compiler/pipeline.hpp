@@ -1,0 +1,44 @@
+#pragma once
+// The display compiler: scene config -> import -> rules -> openings -> luminaires -> mesh -> light -> cells
+// -> bundle. Each stage records what it did; a stage the scene does not call for is not run.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "compiler/scene/scene_config.hpp"
+#include "model/bundle.hpp"
+
+namespace walk::compiler {
+
+// Bumped whenever the compiler's output for the same inputs changes, so old bundles are rebuilt.
+inline constexpr std::uint32_t kCompilerRevision = 1;
+
+struct StageReport {
+  std::string name;
+  bool ran = false;
+  double seconds = 0.0;
+  std::uint64_t items_in = 0;
+  std::uint64_t items_out = 0;
+  std::string detail;
+};
+
+struct CompileOptions {
+  unsigned threads = 2;
+};
+
+struct CompileResult {
+  model::BundleContents bundle;
+  std::vector<StageReport> stages;
+};
+
+// Hash of everything the output depends on: config bytes, model file bytes, compiler revision.
+[[nodiscard]] std::uint64_t scene_hash(const SceneConfig& config);
+
+[[nodiscard]] CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options = {});
+
+// Compiles `config_path` into `output` unless `output` already holds a bundle of the same scene hash
+// (returns false then). Never leaves a partial bundle behind.
+bool compile_to_file(const std::string& config_path, const std::string& output, bool force,
+                     std::vector<StageReport>* stages = nullptr, const CompileOptions& options = {});
+
+}  // namespace walk::compiler

@@ -1,0 +1,193 @@
+#include "compiler/scene/scene_config.hpp"
+
+#include <filesystem>
+#include <glm/geometric.hpp>
+
+#include "compiler/scene/toml_access.hpp"
+#include "compiler/scene/units.hpp"
+#include "model/error.hpp"
+
+namespace walk::compiler {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::regex compile_regex(const TomlTable& t, const std::string& key) {
+  const auto text = t.string(key);
+  try {
+    return std::regex(*text, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    t.fail(key, "not a valid regular expression: " + std::string(e.what()));
+  }
+}
+
+model::Rgb rgb01(const TomlTable& t, const std::string& key, model::Rgb fallback) {
+  const auto v = t.numbers(key, 3);
+  if (!v) return fallback;
+  for (double c : *v)
+    if (!(c >= 0.0 && c <= 1.0)) t.fail(key, "each component must be between 0 and 1");
+  return {(*v)[0], (*v)[1], (*v)[2]};
+}
+
+double positive(const TomlTable& t, const std::string& key, double fallback) {
+  const auto v = t.number(key);
+  if (!v) return fallback;
+  if (!(*v > 0.0)) t.fail(key, "must be greater than 0");
+  return *v;
+}
+
+void read_model(const TomlTable& root, SceneConfig& cfg) {
+  const auto model = root.table("model");
+  if (!model) root.fail("model", "missing [model] table with at least `file = \"building.dxf\"`");
+  model->only({"file", "format", "units", "faces"});
+  const auto file = model->string("file");
+  if (!file) model->fail("file", "missing: name the building model to import");
+  fs::path p(*file);
+  if (p.is_relative()) p = fs::path(cfg.path).parent_path() / p;
+  cfg.model_file = p.lexically_normal().string();
+  std::string ext = p.extension().string();
+  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  cfg.format = model->string("format").value_or(ext.empty() ? "" : ext.substr(1));
+  if (cfg.format != "dxf")
+    model->fail("format", "format '" + cfg.format + "' is not supported yet (supported: dxf)");
+  const std::string units = model->string("units").value_or("m");
+  const auto scale = metres_per_unit(units);
+  if (!scale) model->fail("units", "unknown unit '" + units + "' (known: " + known_units() + ")");
+  cfg.metres_per_unit = *scale;
+  const std::string faces = model->string("faces").value_or("inward");
+  if (faces != "inward" && faces != "outward")
+    model->fail("faces", "must be \"inward\" (faces look into their room) or \"outward\" (EnergyPlus zones)");
+  cfg.faces_point_outward = faces == "outward";
+}
+
+void read_rules(const TomlTable& root, SceneConfig& cfg) {
+  for (const auto& t : root.array_of_tables("rules")) {
+    t.only({"layer", "name", "color", "role", "material"});
+    FaceRule rule;
+    rule.where = t.where("role");
+    if (t.has("layer")) rule.layer = compile_regex(t, "layer");
+    if (t.has("name")) rule.name = compile_regex(t, "name");
+    if (const auto c = t.integer("color")) rule.color = static_cast<int>(*c);
+    if (const auto r = t.string("role")) {
+      model::Role role;
+      if (!model::parse_role(*r, role))
+        t.fail("role", "unknown role '" + *r + "' (known: opaque, glass, opening, luminaire, ignored)");
+      rule.role = role;
+    }
+    rule.material = t.string("material");
+    if (!rule.role && !rule.material) t.fail("role", "a rule needs a role, a material or both");
+    cfg.rules.push_back(std::move(rule));
+  }
+}
+
+void read_materials(const TomlTable& root, SceneConfig& cfg) {
+  cfg.materials.push_back({"default", {0.5, 0.5, 0.5}});
+  const auto mats = root.table("materials");
+  if (!mats) return;
+  for (const auto& [key, node] : mats->raw()) {
+    const std::string name(key.str());
+    const auto t = mats->table(name);
+    t->only({"reflectance"});
+    if (!t->has("reflectance")) t->fail("reflectance", "missing: give [r, g, b] between 0 and 1");
+    model::Material m{name, rgb01(*t, "reflectance", {})};
+    if (name == "default")
+      cfg.materials[0] = m;
+    else
+      cfg.materials.push_back(m);
+  }
+  for (const auto& rule : cfg.rules) {
+    if (!rule.material) continue;
+    bool found = false;
+    for (const auto& m : cfg.materials) found = found || m.name == *rule.material;
+    if (!found)
+      throw Error(rule.where + ": rule names material '" + *rule.material + "' that no [materials." +
+                  *rule.material + "] table defines");
+  }
+}
+
+void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
+  const auto lum = root.table("luminaires");
+  if (!lum) return;
+  lum->only({"per_group", "panel"});
+  if (const auto pg = lum->table("per_group")) {
+    pg->only({"enabled", "size", "power", "colour", "drop", "exclude_groups"});
+    auto& p = cfg.panels;
+    p.enabled = pg->boolean("enabled").value_or(true);
+    if (const auto size = pg->numbers("size", 2)) {
+      p.width = (*size)[0];
+      p.height = (*size)[1];
+      if (!(p.width > 0 && p.height > 0)) pg->fail("size", "both sides must be greater than 0");
+    }
+    p.power = positive(*pg, "power", p.power);
+    p.colour = rgb01(*pg, "colour", p.colour);
+    p.drop = pg->number("drop").value_or(p.drop);
+    if (pg->has("exclude_groups")) p.exclude_groups = compile_regex(*pg, "exclude_groups");
+  }
+  for (const auto& t : lum->array_of_tables("panel")) {
+    t.only({"name", "position", "normal", "size", "power", "colour", "circuit"});
+    model::Luminaire l;
+    l.name = t.string("name").value_or("panel" + std::to_string(cfg.luminaires.size()));
+    const auto pos = t.numbers("position", 3);
+    if (!pos) t.fail("position", "missing: give [x, y, z] in model units");
+    l.position = model::Vec3((*pos)[0], (*pos)[1], (*pos)[2]) * cfg.metres_per_unit;
+    if (const auto n = t.numbers("normal", 3)) l.normal = {(*n)[0], (*n)[1], (*n)[2]};
+    if (glm::dot(l.normal, l.normal) < 1e-12) t.fail("normal", "must not be zero");
+    if (const auto size = t.numbers("size", 2)) {
+      l.width = (*size)[0];
+      l.height = (*size)[1];
+    }
+    l.power = rgb01(t, "colour", {1, 1, 1}) * positive(t, "power", 60.0);
+    cfg.luminaires.push_back(l);
+    cfg.luminaire_circuits.push_back(t.string("circuit").value_or(l.name));
+  }
+}
+
+void read_circuits(const TomlTable& root, SceneConfig& cfg) {
+  for (const auto& t : root.array_of_tables("circuits")) {
+    t.only({"name", "luminaires", "default_level"});
+    CircuitRule c;
+    const auto name = t.string("name");
+    if (!name || name->empty()) t.fail("name", "missing: every circuit needs a name");
+    c.name = *name;
+    if (!t.has("luminaires")) t.fail("luminaires", "missing: a regular expression over luminaire names");
+    c.luminaires = compile_regex(t, "luminaires");
+    c.default_level = t.number("default_level").value_or(1.0);
+    if (!(c.default_level >= 0.0 && c.default_level <= 1.0))
+      t.fail("default_level", "must be between 0 and 1");
+    cfg.circuits.push_back(std::move(c));
+  }
+}
+
+void read_lighting(const TomlTable& root, SceneConfig& cfg) {
+  const auto t = root.table("lighting");
+  if (!t) return;
+  t->only({"grid", "samples_per_luminaire", "ambient", "exposure"});
+  auto& l = cfg.lighting;
+  l.grid = positive(*t, "grid", l.grid);
+  if (const auto s = t->integer("samples_per_luminaire")) {
+    if (*s < 1 || *s > 4096) t->fail("samples_per_luminaire", "must be between 1 and 4096");
+    l.samples_per_luminaire = static_cast<int>(*s);
+  }
+  l.ambient = t->number("ambient").value_or(l.ambient);
+  if (l.ambient < 0.0) t->fail("ambient", "must not be negative");
+  if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);
+}
+
+}  // namespace
+
+SceneConfig load_scene_config(const std::string& path) {
+  SceneConfig cfg;
+  cfg.path = path;
+  const toml::table root_table = parse_toml_file(path, &cfg.text);
+  const TomlTable root(root_table, path, "");
+  root.only({"model", "rules", "materials", "luminaires", "circuits", "lighting"});
+  read_model(root, cfg);
+  read_rules(root, cfg);
+  read_materials(root, cfg);
+  read_luminaires(root, cfg);
+  read_circuits(root, cfg);
+  read_lighting(root, cfg);
+  return cfg;
+}
+
+}  // namespace walk::compiler

@@ -1,0 +1,65 @@
+#pragma once
+// The scene config (TOML): which model to import, in which units, how its layers/colours/names map to roles
+// and materials, which luminaires exist and which circuit each belongs to, and the lighting knobs.
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace walk::compiler {
+
+// A rule maps faces to a role and/or a material; the first rule whose every given field matches wins.
+struct FaceRule {
+  std::optional<std::regex> layer;  // matched against the whole layer (group) name
+  std::optional<std::regex> name;   // searched in the face name
+  std::optional<int> color;         // DXF ACI colour
+  std::optional<model::Role> role;
+  std::optional<std::string> material;
+  std::string where;  // "file:line" of the rule, for messages
+};
+
+// One ceiling panel per room, one circuit per room, for models that come without luminaires.
+struct PanelsPerGroup {
+  bool enabled = false;
+  double width = 0.6, height = 0.6;
+  double power = 60.0;  // radiant watts per panel
+  model::Rgb colour{1.0, 1.0, 1.0};
+  double drop = 0.02;  // below the ceiling, metres: keeps the panel off the ceiling plane
+  std::optional<std::regex> exclude_groups;
+};
+
+struct CircuitRule {
+  std::string name;
+  std::regex luminaires;  // luminaire names searched
+  double default_level = 1.0;
+};
+
+struct LightingConfig {
+  double grid = 0.5;               // metres between lighting samples on surfaces
+  int samples_per_luminaire = 8;   // jittered points per area luminaire for direct light and shadows
+  double ambient = 0.02;           // W/m2 per unit albedo added at display time for light not yet simulated
+  std::optional<double> exposure;  // W/m2 shown as white; automatic when absent
+};
+
+struct SceneConfig {
+  std::string path;        // the config file itself
+  std::string model_file;  // absolute, resolved against the config's folder
+  std::string format;      // "dxf"
+  double metres_per_unit = 1.0;
+  bool faces_point_outward = false;  // true: flip every face so it faces into its room (EnergyPlus)
+  std::vector<FaceRule> rules;
+  std::vector<model::Material> materials;
+  PanelsPerGroup panels;
+  std::vector<model::Luminaire> luminaires;     // explicit ones, world coordinates
+  std::vector<std::string> luminaire_circuits;  // circuit name of each explicit luminaire
+  std::vector<CircuitRule> circuits;
+  LightingConfig lighting;
+  std::string text;  // the file's bytes, part of the scene hash
+};
+
+// Throws walk::Error naming the file, the line and the key for any problem.
+[[nodiscard]] SceneConfig load_scene_config(const std::string& path);
+
+}  // namespace walk::compiler

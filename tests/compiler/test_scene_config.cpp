@@ -1,0 +1,87 @@
+// Scene config errors name the file, the line and the key.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "compiler/scene/scene_config.hpp"
+#include "model/error.hpp"
+
+namespace walk::compiler {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SceneConfigTest : public ::testing::Test {
+ protected:
+  std::string write(const std::string& text) {
+    path_ = (fs::temp_directory_path() / ("walk_scene_" + std::to_string(::getpid()) + ".toml")).string();
+    std::ofstream(path_) << text;
+    return path_;
+  }
+  std::string error_of(const std::string& text) {
+    try {
+      load_scene_config(write(text));
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return {};
+  }
+  void TearDown() override { fs::remove(path_); }
+  std::string path_;
+};
+
+TEST_F(SceneConfigTest, UnknownUnitNamesKeyLineAndKnownUnits) {
+  const std::string e = error_of("[model]\nfile = \"a.dxf\"\nunits = \"furlong\"\n");
+  EXPECT_NE(e.find(path_ + ":3"), std::string::npos) << e;
+  EXPECT_NE(e.find("model.units"), std::string::npos) << e;
+  EXPECT_NE(e.find("furlong"), std::string::npos) << e;
+  EXPECT_NE(e.find("mm"), std::string::npos) << e;
+}
+
+TEST_F(SceneConfigTest, SyntaxErrorNamesLine) {
+  const std::string e = error_of("[model]\nfile = \"a.dxf\"\nunits = = 3\n");
+  EXPECT_NE(e.find(path_ + ":3"), std::string::npos) << e;
+}
+
+TEST_F(SceneConfigTest, MisspeltKeyIsRefused) {
+  const std::string e = error_of("[model]\nfile = \"a.dxf\"\nunit = \"m\"\n");
+  EXPECT_NE(e.find("unknown key 'model.unit'"), std::string::npos) << e;
+}
+
+TEST_F(SceneConfigTest, BadRuleFieldsAreRefused) {
+  EXPECT_NE(error_of("[model]\nfile = \"a.dxf\"\n[[rules]]\nname = \"(\"\nrole = \"glass\"\n")
+                .find("rules[0].name"),
+            std::string::npos);
+  EXPECT_NE(error_of("[model]\nfile = \"a.dxf\"\n[[rules]]\nrole = \"window\"\n").find("unknown role"),
+            std::string::npos);
+  EXPECT_NE(error_of("[model]\nfile = \"a.dxf\"\n[[rules]]\nrole = \"glass\"\nmaterial = \"pane\"\n")
+                .find("material 'pane'"),
+            std::string::npos);
+  EXPECT_NE(error_of("[model]\nfile = \"a.dxf\"\n[materials.wall]\nreflectance = [0.5, 1.5, 0.5]\n")
+                .find("between 0 and 1"),
+            std::string::npos);
+}
+
+TEST_F(SceneConfigTest, MissingModelTable) {
+  EXPECT_NE(error_of("[lighting]\ngrid = 1\n").find("[model]"), std::string::npos);
+}
+
+TEST_F(SceneConfigTest, ModelPathIsResolvedAgainstTheConfigFolder) {
+  write("[model]\nfile = \"sub/a.dxf\"\nunits = \"in\"\n");
+  const SceneConfig c = load_scene_config(path_);
+  EXPECT_EQ(fs::path(c.model_file), fs::path(path_).parent_path() / "sub" / "a.dxf");
+  EXPECT_DOUBLE_EQ(c.metres_per_unit, 0.0254);
+}
+
+TEST_F(SceneConfigTest, ShippedScenesLoad) {
+  for (const char* name : {"house.toml", "medium-office.toml"}) {
+    const SceneConfig c = load_scene_config(std::string(WALK_SOURCE_DIR) + "/config/scenes/" + name);
+    EXPECT_TRUE(fs::exists(c.model_file)) << c.model_file;
+    EXPECT_TRUE(c.panels.enabled);
+    EXPECT_FALSE(c.rules.empty());
+  }
+}
+
+}  // namespace
+}  // namespace walk::compiler

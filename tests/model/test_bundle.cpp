@@ -1,0 +1,169 @@
+// Bundle round trip and integrity: every corruption is caught at open with a message naming the file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "model/bundle.hpp"
+#include "model/error.hpp"
+
+namespace walk::model {
+namespace {
+
+namespace fs = std::filesystem;
+
+BundleContents small_bundle() {
+  BundleContents c;
+  c.meta.exposure = 2.0f;
+  c.meta.ambient = 0.1f;
+  c.meta.circuit_count = 2;
+  c.meta.origin[0] = 1e6;  // far from the world origin: doubles keep it exact
+  for (int i = 0; i < 4; ++i) {
+    VertexRecord v{};
+    v.position[0] = float(i & 1);
+    v.position[1] = float(i >> 1);
+    v.normal[2] = 1.0f;
+    v.albedo[0] = v.albedo[1] = v.albedo[2] = 0.5f;
+    c.vertices.push_back(v);
+  }
+  c.indices = {0, 1, 3, 0, 3, 2};
+  c.polygons.push_back({0, 6, 0, 4, 0, 0, 0, c.add_string("floor")});
+  c.materials.push_back({{0.5f, 0.5f, 0.5f}, c.add_string("default")});
+  c.groups.push_back({c.add_string("room")});
+  c.circuits.push_back({c.add_string("a"), 1.0f});
+  c.circuits.push_back({c.add_string("b"), 0.5f});
+  c.light.assign(4 * 2 * 3, 0.25f);
+  c.cells.push_back({{0, 0, 0}, {1, 1, 0}, 0, 1});
+  c.pvs = {0};
+  c.stages.push_back({c.add_string("import"), 1, 42, 0.5, 1, 1});
+  return c;
+}
+
+class BundleTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("walk_bundle_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    path_ = (dir_ / "x.walk").string();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::vector<char> bytes() const {
+    std::ifstream in(path_, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+  }
+  void put(const std::vector<char>& b) const {
+    std::ofstream out(path_, std::ios::binary | std::ios::trunc);
+    out.write(b.data(), static_cast<std::streamsize>(b.size()));
+  }
+  std::string open_error() const {
+    try {
+      Bundle::open(path_);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return {};
+  }
+  fs::path dir_;
+  std::string path_;
+};
+
+TEST_F(BundleTest, RoundTripKeepsEveryRecord) {
+  const BundleContents c = small_bundle();
+  write_bundle(path_, c);
+  const auto b = Bundle::open(path_);
+  EXPECT_EQ(b->meta().origin[0], 1e6);
+  EXPECT_EQ(b->vertices().size(), 4u);
+  EXPECT_EQ(b->indices().size(), 6u);
+  EXPECT_EQ(b->string(b->polygons()[0].name), "floor");
+  EXPECT_EQ(b->string(b->circuits()[1].name), "b");
+  EXPECT_FLOAT_EQ(b->circuits()[1].default_level, 0.5f);
+  EXPECT_EQ(b->light().size(), 24u);
+  EXPECT_EQ(b->stages()[0].input_hash, 42u);
+  EXPECT_EQ(b->file_size() % kSectionAlignment, 0u);
+}
+
+TEST_F(BundleTest, EveryFlippedByteIsRejected) {
+  write_bundle(path_, small_bundle());
+  const std::vector<char> good = bytes();
+  // Flip one bit in every byte that carries data (padding bytes are not covered by checksums, so skip zeros
+  // between sections by checking that the flip changes what a reader would see: the open must fail or the
+  // byte lies in padding).
+  std::size_t rejected = 0, padding = 0;
+  for (std::size_t i = 0; i < good.size(); ++i) {
+    std::vector<char> bad = good;
+    bad[i] ^= 0x10;
+    put(bad);
+    const std::string err = open_error();
+    if (err.empty()) {
+      ++padding;
+      continue;
+    }
+    ++rejected;
+    EXPECT_NE(err.find(path_), std::string::npos) << err;
+  }
+  EXPECT_GT(rejected, good.size() / 2);
+  // What was accepted must be alignment padding only: at most 15 bytes per section boundary plus the tail.
+  EXPECT_LE(padding, 16u * 15u);
+}
+
+TEST_F(BundleTest, TruncatedFileIsRejected) {
+  write_bundle(path_, small_bundle());
+  std::vector<char> b = bytes();
+  for (std::size_t keep : {std::size_t(0), std::size_t(10), std::size_t(40), b.size() / 2, b.size() - 1}) {
+    put(std::vector<char>(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(keep)));
+    EXPECT_NE(open_error(), "") << "kept " << keep << " bytes";
+  }
+}
+
+TEST_F(BundleTest, CrossReferencesAreValidated) {
+  BundleContents c = small_bundle();
+  c.indices[2] = 99;  // vertex out of range, with a correct checksum
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("INDX"), std::string::npos);
+
+  c = small_bundle();
+  c.cells[0].pvs_count = 5;
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("PVS"), std::string::npos);
+
+  c = small_bundle();
+  c.light[3] = -1.0f;
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LGHT"), std::string::npos);
+
+  c = small_bundle();
+  c.nodes.push_back({{1, 0, 0, 0}, 0, -1});  // a node pointing at itself would loop forever
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("NODE"), std::string::npos);
+}
+
+TEST_F(BundleTest, FailedWriteLeavesNoFile) {
+  const std::string inside_missing = (dir_ / "no_such_folder" / "x.walk").string();
+  EXPECT_THROW(write_bundle(inside_missing, small_bundle()), Error);
+  EXPECT_FALSE(fs::exists(inside_missing));
+  write_bundle(path_, small_bundle());
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u) << "temporary file left behind";
+}
+
+TEST_F(BundleTest, MissingFileNamesTheCommandToRun) {
+  const std::string err = open_error();
+  EXPECT_NE(err.find("walk compile"), std::string::npos) << err;
+}
+
+TEST_F(BundleTest, LocateCellWalksTheTree) {
+  BundleContents c = small_bundle();
+  c.cells.push_back({{0, 0, 0}, {1, 1, 0}, 0, 1});
+  c.nodes.push_back({{1, 0, 0, -0.5}, -2, -1});  // x >= 0.5: cell 1, else cell 0
+  write_bundle(path_, c);
+  const auto b = Bundle::open(path_);
+  const double left[3] = {0.2, 0.5, 0}, right[3] = {0.8, 0.5, 0}, on_plane[3] = {0.5, 0.5, 0};
+  EXPECT_EQ(b->locate_cell(left), 0u);
+  EXPECT_EQ(b->locate_cell(right), 1u);
+  EXPECT_EQ(b->locate_cell(on_plane), 1u);  // ties go to the front side
+}
+
+}  // namespace
+}  // namespace walk::model

@@ -1,0 +1,65 @@
+// walk inspect x.walk: what a bundle holds, after full validation.
+#include <cstdio>
+#include <numeric>
+
+#include "model/bundle.hpp"
+#include "model/model.hpp"
+#include "tools/commands.hpp"
+
+namespace walk::tools {
+namespace {
+
+int inspect(const std::string& path, bool list) {
+  const auto b = model::Bundle::open(path);
+  const auto& m = b->meta();
+  std::printf("bundle %s: %llu bytes, format version %u, scene hash %016llx\n", path.c_str(),
+              static_cast<unsigned long long>(b->file_size()), model::kBundleVersion,
+              static_cast<unsigned long long>(m.scene_hash));
+  std::printf("origin (world m)  %.3f %.3f %.3f\n", m.origin[0], m.origin[1], m.origin[2]);
+  std::printf("bounds (local m)  %.3f %.3f %.3f .. %.3f %.3f %.3f\n", m.bounds_min[0], m.bounds_min[1],
+              m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
+  std::size_t per_role[5] = {};
+  for (const auto& p : b->polygons()) ++per_role[p.role];
+  std::printf("polygons          %zu (opaque %zu, glass %zu, luminaire panels %zu)\n", b->polygons().size(),
+              per_role[0], per_role[1], per_role[3]);
+  std::printf("vertices          %zu\ntriangles         %zu\n", b->vertices().size(),
+              b->indices().size() / 3);
+  std::printf("materials         %zu\nrooms (groups)    %zu\n", b->materials().size(), b->groups().size());
+  std::printf("luminaires        %zu\ncircuits          %zu\n", b->luminaires().size(), b->circuits().size());
+  std::printf("cells             %zu (tree nodes %zu, PVS entries %zu)\n", b->cells().size(),
+              b->nodes().size(), b->pvs().size());
+  std::printf("ambient %.4f W/m2 per albedo, exposure %.4f W/m2 = white\n", m.ambient, m.exposure);
+  std::printf("stages:\n");
+  for (const auto& s : b->stages())
+    std::printf("  %-11s %-8s %8.3f s  in %llu out %llu\n", std::string(b->string(s.name)).c_str(),
+                s.ran ? "ran" : "skipped", s.seconds, static_cast<unsigned long long>(s.items_in),
+                static_cast<unsigned long long>(s.items_out));
+  if (list) {
+    std::printf("circuits:\n");
+    for (std::size_t c = 0; c < b->circuits().size(); ++c) {
+      double peak = 0.0;
+      for (std::size_t v = 0; v < b->vertices().size(); ++v)
+        peak = std::max<double>(peak, b->light()[(v * b->circuits().size() + c) * 3 + 1]);
+      std::printf("  %2zu %-24s default %.2f  peak B %.2f W/m2\n", c,
+                  std::string(b->string(b->circuits()[c].name)).c_str(), b->circuits()[c].default_level,
+                  peak);
+    }
+    std::printf("rooms:\n");
+    for (std::size_t g = 0; g < b->groups().size(); ++g)
+      std::printf("  %2zu %s\n", g, std::string(b->string(b->groups()[g].name)).c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_inspect_command(CLI::App& app, int& exit_code) {
+  auto path = std::make_shared<std::string>();
+  auto list = std::make_shared<bool>(false);
+  auto* cmd = app.add_subcommand("inspect", "Validate a bundle and print what it holds");
+  cmd->add_option("bundle", *path, "Bundle to inspect")->required();
+  cmd->add_flag("-l,--list", *list, "Also list circuits and rooms");
+  cmd->callback([path, list, &exit_code] { exit_code = inspect(*path, *list); });
+}
+
+}  // namespace walk::tools
