@@ -28,9 +28,11 @@ class Backend {
   [[nodiscard]] virtual int width() const = 0;
   [[nodiscard]] virtual int height() const = 0;
   virtual void make_current() = 0;
-  virtual void present() {}                                   // swap buffers for a window; headless: no-op
+  virtual void present() {}  // swap buffers for a window; headless: no-op
   [[nodiscard]] virtual bool close_requested() { return false; }  // window closed by the user
   virtual void poll_events() {}
+  // True when frames must be blitted to the default framebuffer to be seen (Renderer::set_present_to_window).
+  [[nodiscard]] virtual bool has_window() const { return false; }
 
   static std::unique_ptr<Backend> create(const BackendOptions& options);
 };
