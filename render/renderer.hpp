@@ -2,12 +2,11 @@
 // Draws a bundle: static buffers uploaded once, the PVS of the eye's cell, circuits mixed by dimmer levels in
 // the vertex shader (a dimmer change shows in the next frame with no re-upload). Needs a current GL context.
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "model/bundle.hpp"
 
@@ -28,13 +27,18 @@ struct Image {
   int width = 0;
   int height = 0;
   std::vector<std::uint8_t> rgba;
-  [[nodiscard]] const std::uint8_t* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
+  [[nodiscard]] const std::uint8_t* pixel(int x, int y) const {
+    return &rgba[(std::size_t(y) * width + x) * 4];
+  }
 };
 
 struct FrameStats {
+  static constexpr std::uint32_t kNoCell =
+      0xffffffffu;  // no cells, or the eye is outside all of them: all drawn
   std::uint32_t cell = 0;
   std::uint32_t polygons_drawn = 0;
   std::uint32_t triangles_drawn = 0;
+  std::uint32_t draw_ranges = 0;  // glMultiDrawElements entries after merging neighbouring polygons
 };
 
 class Renderer {
@@ -46,6 +50,11 @@ class Renderer {
 
   // One level per circuit, 0..1; missing entries keep their previous level.
   void set_dimmers(std::span<const float> levels);
+  [[nodiscard]] std::span<const float> dimmers() const;
+  // On by default: each zone's copy of a double wall faces into its own zone.
+  void set_backface_culling(bool enabled);
+  // Blit each frame to the default framebuffer (a window); off by default. Use Backend::has_window().
+  void set_present_to_window(bool enabled);
   void draw(const View& view, int width, int height);
   [[nodiscard]] Image read_pixels(int width, int height) const;
   [[nodiscard]] const FrameStats& last_stats() const;
