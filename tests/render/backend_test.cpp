@@ -1,0 +1,83 @@
+// Backend names, selection and errors; the two headless backends agree on the same frame.
+#include <glad/gl.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "model/error.hpp"
+#include "render_test_support.hpp"
+#include "two_rooms.hpp"
+
+namespace walk::render::test {
+namespace {
+
+TEST(BackendNames, RoundTrip) {
+  for (BackendKind kind : {BackendKind::Auto, BackendKind::OSMesa, BackendKind::EGL, BackendKind::GLFW})
+    EXPECT_EQ(parse_backend_kind(backend_kind_name(kind)), kind);
+}
+
+TEST(BackendNames, UnknownNameListsTheAcceptedValues) {
+  try {
+    (void)parse_backend_kind("vulkan");
+    FAIL() << "'vulkan' accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'vulkan'"), std::string::npos) << message;
+    EXPECT_NE(message.find("auto, osmesa, egl, glfw"), std::string::npos) << message;
+  }
+}
+
+TEST(Backends, EachHeadlessBackendGivesACoreContext) {
+  for (BackendKind kind : {BackendKind::OSMesa, BackendKind::EGL}) {
+    auto backend = headless(kind, 64, 48);
+    EXPECT_STREQ(backend->name(), backend_kind_name(kind));
+    EXPECT_EQ(backend->width(), 64);
+    EXPECT_EQ(backend->height(), 48);
+    EXPECT_FALSE(backend->has_window());
+    GLint version_major = 0, version_minor = 0, profile = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &version_major);
+    glGetIntegerv(GL_MINOR_VERSION, &version_minor);
+    glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+    EXPECT_GE(version_major * 10 + version_minor, 33) << backend->name();
+    EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT) << backend->name();
+  }
+}
+
+TEST(Backends, AutoWithoutADisplayPicksEgl) {
+  ::unsetenv("DISPLAY");
+  ::unsetenv("WAYLAND_DISPLAY");
+  BackendOptions options;
+  options.width = 32;
+  options.height = 32;
+  auto backend = Backend::create(options);
+  EXPECT_STREQ(backend->name(), "egl");
+}
+
+TEST(Backends, BadSizeIsAnError) {
+  BackendOptions options;
+  options.kind = BackendKind::OSMesa;
+  options.width = 0;
+  EXPECT_THROW((void)Backend::create(options), Error);
+}
+
+TEST(Backends, OSMesaAndEglDrawTheSameFrame) {
+  TwoRooms scene;
+  auto bundle = open_two_rooms(scene, "same_frame");
+  Image images[2];
+  int i = 0;
+  for (BackendKind kind : {BackendKind::OSMesa, BackendKind::EGL}) {
+    auto backend = headless(kind, 320, 240);
+    Renderer renderer(*bundle);
+    renderer.draw(looking_along_x(+1.0, 0.5), 320, 240);
+    images[i++] = renderer.read_pixels(320, 240);
+  }
+  ASSERT_EQ(images[0].rgba.size(), images[1].rgba.size());
+  int worst = 0;
+  for (std::size_t k = 0; k < images[0].rgba.size(); ++k)
+    worst = std::max(worst, std::abs(int(images[0].rgba[k]) - int(images[1].rgba[k])));
+  EXPECT_LE(worst, 1) << "largest difference between OSMesa and EGL, in 8-bit steps";
+}
+
+}  // namespace
+}  // namespace walk::render::test

@@ -1,0 +1,159 @@
+// Pixels of the two-room scene through each headless backend, against the display formula computed here:
+// colour = albedo * ambient + sum_c level[c] * L[v][c], divided by exposure, sRGB encoded.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "model/error.hpp"
+#include "render_test_support.hpp"
+#include "two_rooms.hpp"
+
+namespace walk::render::test {
+namespace {
+
+constexpr int kTolerance = 2;  // 8-bit steps: llvmpipe's float-to-unorm rounding and interpolation
+
+void expect_colour(const std::uint8_t* pixel, const glm::dvec3& linear, double exposure, const char* what) {
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(int(pixel[k]), expected_byte(linear[k], exposure), kTolerance) << what << ", channel " << k;
+  EXPECT_EQ(pixel[3], 255) << what;
+}
+
+class PixelTest : public ::testing::TestWithParam<BackendKind> {
+ protected:
+  void SetUp() override { backend_ = headless(GetParam()); }
+  Image render(const model::Bundle& bundle, const View& view, Renderer* existing = nullptr) {
+    Renderer local(bundle);
+    Renderer& r = existing ? *existing : local;
+    r.draw(view, kWidth, kHeight);
+    stats_ = r.last_stats();
+    return r.read_pixels(kWidth, kHeight);
+  }
+  std::unique_ptr<Backend> backend_;
+  FrameStats stats_;
+  TwoRooms scene_;
+};
+
+TEST_P(PixelTest, WallStraightAheadHasTheFormulaColour) {
+  auto bundle = open_two_rooms(scene_, "wall_ahead");
+  const Image image = render(*bundle, looking_along_x(-1.0));
+  expect_colour(centre(image), radiosity(scene_, false, scene_.wall_factor, 1, 1), scene_.exposure,
+                "A's outer wall");
+  EXPECT_EQ(stats_.cell, 0u);
+}
+
+TEST_P(PixelTest, OpeningShowsTheSecondRoom) {
+  auto bundle = open_two_rooms(scene_, "opening");
+  const Image image = render(*bundle, looking_along_x(+1.0));
+  expect_colour(centre(image), radiosity(scene_, true, scene_.wall_factor, 1, 1), scene_.exposure,
+                "B's far wall");
+  // Beside the opening (a quarter of the way in from the left edge: y > 2.5) is A's copy of the shared wall.
+  expect_colour(image.pixel(kWidth / 8, kHeight / 2), radiosity(scene_, false, scene_.wall_factor, 1, 1),
+                scene_.exposure, "A's shared wall");
+  // Every polygon but the opening: 6 + 2 per room (outer walls, floor, ceiling, sides, three door pieces).
+  EXPECT_EQ(stats_.polygons_drawn, 16u);
+  EXPECT_EQ(stats_.triangles_drawn, 32u);
+  EXPECT_EQ(stats_.draw_ranges, 2u) << "ranges either side of the opening should merge";
+}
+
+TEST_P(PixelTest, TopRowIsFirst) {
+  auto bundle = open_two_rooms(scene_, "rows");
+  // 3.9 m from the wall, the 60 degree view reaches past the ceiling at the top and the floor at the bottom.
+  const Image image = render(*bundle, looking_along_x(-1.0, 3.9));
+  expect_colour(image.pixel(kWidth / 2, 0), radiosity(scene_, false, scene_.ceiling_factor, 1, 1),
+                scene_.exposure, "top row: ceiling");
+  expect_colour(image.pixel(kWidth / 2, kHeight - 1), radiosity(scene_, false, scene_.floor_factor, 1, 1),
+                scene_.exposure, "bottom row: floor");
+}
+
+TEST_P(PixelTest, DimmersMixCircuitsWithoutReupload) {
+  auto bundle = open_two_rooms(scene_, "dimmers");
+  Renderer renderer(*bundle);
+  const View view = looking_along_x(+1.0);
+  const glm::dvec3 full = radiosity(scene_, true, scene_.wall_factor, 1, 1);
+
+  const std::vector<float> off{1.0f, 0.0f};
+  renderer.set_dimmers(off);
+  const Image dark = render(*bundle, view, &renderer);
+  const glm::dvec3 ambient_and_c0 = radiosity(scene_, true, scene_.wall_factor, 1, 0);
+  expect_colour(centre(dark), ambient_and_c0, scene_.exposure, "circuit 1 off");
+
+  const std::vector<float> half{0.5f};  // only circuit 0 given: circuit 1 keeps 0
+  renderer.set_dimmers(half);
+  EXPECT_FLOAT_EQ(renderer.dimmers()[1], 0.0f);
+  const std::vector<float> both{1.0f, 0.5f};
+  renderer.set_dimmers(both);
+  const Image halved = render(*bundle, view, &renderer);
+  const glm::dvec3 expected_half = radiosity(scene_, true, scene_.wall_factor, 1, 0.5);
+  expect_colour(centre(halved), expected_half, scene_.exposure, "circuit 1 at 0.5");
+  // In linear terms: circuit 1's share at 0.5 is half its share at 1, to within what one 8-bit step at this
+  // brightness can resolve (decode the byte, compare with 4% of the full contribution as the tolerance).
+  auto decode = [&](int byte) {
+    const double e = byte / 255.0;
+    return (e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4)) * scene_.exposure;
+  };
+  for (int k = 1; k < 3; ++k) {  // green and blue: the red channel of B is too dark to resolve 4%
+    const double share_full = full[k] - ambient_and_c0[k];
+    const double share_half = decode(centre(halved)[k]) - decode(centre(dark)[k]);
+    EXPECT_NEAR(share_half / share_full, 0.5, 0.04) << "channel " << k;
+  }
+}
+
+TEST_P(PixelTest, BackFacesAreCulledUnlessTurnedOff) {
+  auto bundle = open_two_rooms(scene_, "culling");
+  // From outside A, behind its outer wall: that wall faces away, so culling shows the rooms through it.
+  const View outside = looking_along_x(+1.0, -2.0);
+  Renderer renderer(*bundle);
+  const Image culled = render(*bundle, outside, &renderer);
+  expect_colour(centre(culled), radiosity(scene_, true, scene_.wall_factor, 1, 1), scene_.exposure,
+                "through A's culled outer wall and the opening");
+  renderer.set_backface_culling(false);
+  const Image drawn = render(*bundle, outside, &renderer);
+  expect_colour(centre(drawn), radiosity(scene_, false, scene_.wall_factor, 1, 1), scene_.exposure,
+                "A's outer wall from behind");
+}
+
+TEST_P(PixelTest, OnlyThePvsOfTheEyesCellIsDrawn) {
+  scene_.cell_a_sees_b = false;
+  auto bundle = open_two_rooms(scene_, "pvs");
+  const Image from_a = render(*bundle, looking_along_x(+1.0));
+  EXPECT_EQ(stats_.cell, 0u);
+  EXPECT_EQ(stats_.polygons_drawn, 8u);
+  const std::uint8_t* p = centre(from_a);
+  EXPECT_EQ(p[0] + p[1] + p[2], 0) << "room B is not in A's PVS, so the opening shows the clear colour";
+  const Image from_b = render(*bundle, looking_along_x(+1.0, 6.0));
+  EXPECT_EQ(stats_.cell, 1u);
+  EXPECT_EQ(stats_.polygons_drawn, 16u);
+  expect_colour(centre(from_b), radiosity(scene_, true, scene_.wall_factor, 1, 1), scene_.exposure, "from B");
+}
+
+TEST_P(PixelTest, MoreThan64CircuitsIsAClearError) {
+  scene_.circuits = 65;
+  auto bundle = open_two_rooms(scene_, "circuits");
+  try {
+    Renderer renderer(*bundle);
+    FAIL() << "65 circuits accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("65 circuits"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("64"), std::string::npos) << e.what();
+  }
+  scene_.circuits = 64;
+  auto ok = open_two_rooms(scene_, "circuits64");
+  const Image image = render(*ok, looking_along_x(-1.0));
+  expect_colour(centre(image), radiosity(scene_, false, scene_.wall_factor, 1, 1), scene_.exposure,
+                "64 circuits");
+}
+
+TEST_P(PixelTest, ReadingAtAnotherSizeIsAnError) {
+  auto bundle = open_two_rooms(scene_, "size");
+  Renderer renderer(*bundle);
+  renderer.draw(looking_along_x(1.0), kWidth, kHeight);
+  EXPECT_THROW((void)renderer.read_pixels(kWidth * 2, kHeight), Error);
+}
+
+INSTANTIATE_TEST_SUITE_P(Headless, PixelTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
+                         [](const auto& info) { return std::string(backend_kind_name(info.param)); });
+
+}  // namespace
+}  // namespace walk::render::test

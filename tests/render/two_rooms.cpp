@@ -1,0 +1,140 @@
+#include "two_rooms.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <glm/geometric.hpp>
+
+#include "model/model.hpp"
+
+namespace walk::render::test {
+namespace {
+
+struct Builder {
+  const TwoRooms& scene;
+  model::BundleContents c;
+  std::uint32_t group_a = 0, group_b = 1;
+
+  // A rectangle corner, corner+u, corner+u+v, corner+v: counter-clockwise about u x v, its front side.
+  std::uint32_t rect(glm::dvec3 corner, glm::dvec3 u, glm::dvec3 v, bool room_b, double factor,
+                     model::Role role = model::Role::Opaque) {
+    const auto id = std::uint32_t(c.polygons.size());
+    const glm::dvec3 albedo = room_b ? scene.albedo_b : scene.albedo_a;
+    const glm::dvec3 n = glm::normalize(glm::cross(u, v));
+    const glm::dvec3 corners[4] = {corner, corner + u, corner + u + v, corner + v};
+    model::PolygonRecord p{};
+    p.first_index = std::uint32_t(c.indices.size());
+    p.index_count = 6;
+    p.first_vertex = std::uint32_t(c.vertices.size());
+    p.vertex_count = 4;
+    p.material = room_b ? 1 : 0;
+    p.group = room_b ? group_b : group_a;
+    p.role = std::uint32_t(role);
+    c.polygons.push_back(p);
+    const double* circuit = room_b ? scene.circuit_b : scene.circuit_a;
+    for (const auto& q : corners) {
+      model::VertexRecord vr{};
+      for (int k = 0; k < 3; ++k) {
+        vr.position[k] = float(q[k]);
+        vr.normal[k] = float(n[k]);
+        vr.albedo[k] = float(albedo[k]);
+      }
+      vr.polygon = id;
+      c.vertices.push_back(vr);
+      for (int ci = 0; ci < scene.circuits; ++ci)
+        for (int k = 0; k < 3; ++k)
+          c.light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor) : 0.0f);
+    }
+    const std::uint32_t b = p.first_vertex;
+    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) c.indices.push_back(i);
+    return id;
+  }
+
+  // Walls at x = x0 and x = x0 + 4, floor, ceiling, side walls; `shared_at_max` says which x wall has the
+  // door.
+  void room(double x0, bool room_b) {
+    const double x1 = x0 + 4.0, f = scene.wall_factor;
+    rect({x0, 0, 0}, {4, 0, 0}, {0, 4, 0}, room_b, scene.floor_factor);    // floor, +z
+    rect({x0, 0, 3}, {0, 4, 0}, {4, 0, 0}, room_b, scene.ceiling_factor);  // ceiling, -z
+    rect({x0, 0, 0}, {0, 0, 3}, {4, 0, 0}, room_b, f);                     // y = 0, +y
+    rect({x0, 4, 0}, {4, 0, 0}, {0, 0, 3}, room_b, f);                     // y = 4, -y
+    // Outer wall: A's at x = 0 faces +x, B's at x = 8 faces -x.
+    if (!room_b)
+      rect({x0, 0, 0}, {0, 4, 0}, {0, 0, 3}, false, f);
+    else
+      rect({x1, 0, 0}, {0, 0, 3}, {0, 4, 0}, true, f);
+    // Shared wall at x = 4 around the opening: A's copy faces -x, B's faces +x.
+    struct Piece {
+      double y0, y1, z0, z1;
+    };
+    for (const Piece& s : {Piece{0, 1.5, 0, 3}, Piece{2.5, 4, 0, 3}, Piece{1.5, 2.5, 2.2, 3}}) {
+      const glm::dvec3 dy{0, s.y1 - s.y0, 0}, dz{0, 0, s.z1 - s.z0}, corner{4, s.y0, s.z0};
+      if (!room_b)
+        rect(corner, dz, dy, false, f);
+      else
+        rect(corner, dy, dz, true, f);
+    }
+  }
+};
+
+}  // namespace
+
+model::BundleContents make_two_rooms(const TwoRooms& scene) {
+  Builder b{scene, {}};
+  auto& c = b.c;
+  c.materials.push_back(
+      {{float(scene.albedo_a.x), float(scene.albedo_a.y), float(scene.albedo_a.z)}, c.add_string("room_a")});
+  c.materials.push_back(
+      {{float(scene.albedo_b.x), float(scene.albedo_b.y), float(scene.albedo_b.z)}, c.add_string("room_b")});
+  c.groups.push_back({c.add_string("A")});
+  c.groups.push_back({c.add_string("B")});
+  b.room(0.0, false);
+  const auto room_a_end = std::uint32_t(c.polygons.size());
+  // The door itself: never drawn. Drawn, it would cover the view into B in the middle of the picture.
+  b.rect({4, 1.5, 0}, {0, 0, 2.2}, {0, 1, 0}, false, scene.wall_factor, model::Role::Opening);
+  b.room(4.0, true);
+  const auto total = std::uint32_t(c.polygons.size());
+
+  for (int i = 0; i < scene.circuits; ++i)
+    c.circuits.push_back({c.add_string("circuit" + std::to_string(i)), 1.0f});
+  c.meta.ambient = scene.ambient;
+  c.meta.exposure = scene.exposure;
+  c.meta.circuit_count = std::uint32_t(scene.circuits);
+  for (int k = 0; k < 3; ++k) {
+    c.meta.bounds_min[k] = 0.0f;
+    c.meta.bounds_max[k] = k == 0 ? 8.0f : k == 1 ? 4.0f : 3.0f;
+  }
+  // Cell A: x < 4 (plane -x + 4 >= 0 is front), cell B: the rest.
+  c.nodes.push_back({{-1.0, 0.0, 0.0, 4.0}, -1, -2});
+  const std::uint32_t seen_from_a = scene.cell_a_sees_b ? total : room_a_end + 1;
+  for (std::uint32_t i = 0; i < seen_from_a; ++i) c.pvs.push_back(i);
+  for (std::uint32_t i = 0; i < total; ++i) c.pvs.push_back(i);
+  c.cells.push_back({{0, 0, 0}, {4, 4, 3}, 0, seen_from_a});
+  c.cells.push_back({{4, 0, 0}, {8, 4, 3}, seen_from_a, total});
+  return c;
+}
+
+std::unique_ptr<model::Bundle> open_two_rooms(const TwoRooms& scene, const std::string& name) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("walk_render_tests_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / (name + ".walk")).string();
+  model::write_bundle(path, make_two_rooms(scene));
+  return model::Bundle::open(path);
+}
+
+int expected_byte(double radiosity, double exposure) {
+  const double c = std::clamp(radiosity / exposure, 0.0, 1.0);
+  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return int(std::lround(encoded * 255.0));
+}
+
+glm::dvec3 radiosity(const TwoRooms& scene, bool room_b, double factor, double level0, double level1) {
+  const glm::dvec3 albedo = room_b ? scene.albedo_b : scene.albedo_a;
+  const double* circuit = room_b ? scene.circuit_b : scene.circuit_a;
+  return albedo * (double(scene.ambient) + factor * (level0 * circuit[0] + level1 * circuit[1]));
+}
+
+}  // namespace walk::render::test

@@ -1,0 +1,39 @@
+#pragma once
+// Test scene: two 4 x 4 x 3 m rooms side by side along x (A: 0..4, B: 4..8) joined by a 1 x 2.2 m opening in
+// the shared wall at y 1.5..2.5. Each room has its own albedo; two circuits light them unequally. Radiosity
+// is constant over each polygon, so a pixel's expected colour follows from the display formula alone.
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <string>
+
+#include "model/bundle.hpp"
+
+namespace walk::render::test {
+
+struct TwoRooms {
+  glm::dvec3 albedo_a{0.7, 0.7, 0.7};
+  glm::dvec3 albedo_b{0.2, 0.5, 0.8};
+  // Irradiance-like scale per room per circuit: L[v][c] = albedo * circuit_x[c] * factor(polygon).
+  double circuit_a[2] = {60.0, 5.0};
+  double circuit_b[2] = {10.0, 50.0};
+  double floor_factor = 1.0;
+  double ceiling_factor = 0.6;
+  double wall_factor = 0.8;
+  float ambient = 8.0f;
+  float exposure = 100.0f;
+  bool cell_a_sees_b = true;  // false: room B's polygons are left out of cell A's PVS
+  int circuits = 2;           // more than 2: extra circuits with no light (for the limit test)
+};
+
+[[nodiscard]] model::BundleContents make_two_rooms(const TwoRooms& scene);
+// Writes the scene to a unique temporary file and opens it.
+[[nodiscard]] std::unique_ptr<model::Bundle> open_two_rooms(const TwoRooms& scene, const std::string& name);
+
+// Expected 8-bit display value of a linear radiosity (W/m2) under `exposure`: clamp, sRGB encode, round.
+[[nodiscard]] int expected_byte(double radiosity, double exposure);
+// Linear radiosity of a polygon in a room at the given circuit levels.
+[[nodiscard]] glm::dvec3 radiosity(const TwoRooms& scene, bool room_b, double factor, double level0,
+                                   double level1);
+
+}  // namespace walk::render::test
