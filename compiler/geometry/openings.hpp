@@ -12,11 +12,18 @@ namespace walk::compiler {
 // windows sit on their wall; 2 mm is well above round-off and below any real wall thickness.
 inline constexpr double kCoplanarTolerance = 0.002;
 
+// How far behind (or in front of) a parallel wall a window may sit and still be cut out of it, metres.
+// Some exporters (DesignBuilder via EnergyPlus, e.g. the shared house.dxf) place windows 0.13 m inside the
+// wall plane, where the real glazing sits in the wall's thickness; 0.3 m covers thick masonry walls and is
+// well below the size of any room, so the glass cannot reach a wall on the far side of a room.
+inline constexpr double kGlassInsetDepth = 0.3;
+
 struct OpeningStats {
-  std::size_t hosts_cut = 0;         // walls that got at least one hole or notch
-  std::size_t openings_cut = 0;      // Role::Opening faces used (and removed)
-  std::size_t glass_cut = 0;         // Role::Glass faces cut out of a host (and kept)
-  std::size_t unmatched = 0;         // opening/glass faces with no coplanar host (kept as they are)
+  std::size_t hosts_cut = 0;     // walls that got at least one hole or notch
+  std::size_t openings_cut = 0;  // Role::Opening faces used (and removed)
+  std::size_t glass_cut = 0;     // Role::Glass faces cut out of a host (and kept)
+  std::size_t unmatched = 0;     // opening/glass faces with no coplanar host (kept as they are)
+  std::size_t glass_inset = 0;   // of glass_cut: recessed behind their host's plane, cut from its projection
 };
 
 OpeningStats cut_openings(model::Model& model, double tolerance = kCoplanarTolerance);
