@@ -83,8 +83,7 @@ void read_rules(const TomlTable& root, SceneConfig& cfg) {
 void read_materials(const TomlTable& root, SceneConfig& cfg) {
   cfg.materials.push_back({"default", {0.5, 0.5, 0.5}});
   const auto mats = root.table("materials");
-  if (!mats) return;
-  for (const auto& [key, node] : mats->raw()) {
+  for (const auto& [key, node] : mats ? mats->raw() : toml::table{}) {
     const std::string name(key.str());
     const auto t = mats->table(name);
     t->only({"reflectance"});

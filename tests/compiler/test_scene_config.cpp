@@ -21,7 +21,7 @@ class SceneConfigTest : public ::testing::Test {
   }
   std::string error_of(const std::string& text) {
     try {
-      load_scene_config(write(text));
+      (void)load_scene_config(write(text));
     } catch (const Error& e) {
       return e.what();
     }

@@ -1,0 +1,126 @@
+// The whole display compiler on the real EnergyPlus house: what the bundle holds is computed, not faked.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "compiler/pipeline.hpp"
+#include "model/error.hpp"
+
+namespace walk::compiler {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kHouseScene = std::string(WALK_SOURCE_DIR) + "/config/scenes/house.toml";
+
+class PipelineTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("walk_pipeline_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  // A scene config in the temp folder whose model is `model_path`, with the house's rules.
+  std::string scene_for(const std::string& model_path, const std::string& extra = {}) {
+    std::ifstream in(kHouseScene);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const auto start = text.find("file = ");
+    text.replace(start, text.find('\n', start) - start, "file = \"" + model_path + "\"");
+    const std::string path = (dir_ / "scene.toml").string();
+    std::ofstream(path) << text << extra;
+    return path;
+  }
+  fs::path dir_;
+};
+
+TEST_F(PipelineTest, HouseCompilesWithOneLitCircuitPerRoom) {
+  const CompileResult r = compile_scene(load_scene_config(kHouseScene));
+  const auto& b = r.bundle;
+  // 16 zones + the arrow layer "1" + "Building Shading"; each zone gets one ceiling panel and its own
+  // circuit.
+  EXPECT_EQ(b.groups.size(), 18u);
+  EXPECT_EQ(b.luminaires.size(), 16u);
+  EXPECT_EQ(b.circuits.size(), 16u);
+  ASSERT_EQ(b.light.size(), b.vertices.size() * b.circuits.size() * 3);
+  for (float v : b.light) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  for (const auto& p : b.polygons) EXPECT_NE(p.role, static_cast<std::uint32_t>(model::Role::Opening));
+
+  // Over each room's floor (EnergyPlus splits non-convex floors into triangles), the room's own circuit gives
+  // more light than any other circuit.
+  const std::size_t circuits = b.circuits.size();
+  std::map<std::string, std::uint32_t> circuit_of;
+  for (std::uint32_t c = 0; c < circuits; ++c) circuit_of[b.strings.c_str() + b.circuits[c].name] = c;
+  std::map<std::string, std::vector<double>> floor_light;
+  for (const auto& poly : b.polygons) {
+    const auto& v0 = b.vertices[poly.first_vertex];
+    if (poly.role != 0 || v0.normal[2] < 0.99f) continue;  // floors only
+    auto& sum = floor_light[b.strings.c_str() + b.groups[poly.group].name];
+    sum.resize(circuits, 0.0);
+    for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
+      for (std::size_t c = 0; c < circuits; ++c) sum[c] += b.light[(v * circuits + c) * 3 + 1];
+  }
+  std::size_t rooms_checked = 0;
+  for (const auto& [room, sum] : floor_light) {
+    const std::uint32_t own = circuit_of.at(room);
+    EXPECT_GT(sum[own], 0.0) << room;
+    for (std::size_t c = 0; c < circuits; ++c)
+      if (c != own)
+        EXPECT_GT(sum[own], sum[c]) << room << " vs circuit " << b.strings.c_str() + b.circuits[c].name;
+    ++rooms_checked;
+  }
+  EXPECT_GE(rooms_checked, 16u);
+
+  // Doors were cut: the stage ran and used every door and passage of the house (17 doors + 7 holes).
+  bool openings_ran = false;
+  for (const auto& s : r.stages)
+    if (s.name == "openings") openings_ran = s.ran;
+  EXPECT_TRUE(openings_ran);
+}
+
+TEST_F(PipelineTest, SecondCompileIsSkippedWhenNothingChanged) {
+  const std::string out = (dir_ / "house.walk").string();
+  EXPECT_TRUE(compile_to_file(kHouseScene, out, false));
+  EXPECT_FALSE(compile_to_file(kHouseScene, out, false));
+  EXPECT_TRUE(compile_to_file(kHouseScene, out, true));
+  const auto bundle = model::Bundle::open(out);
+  EXPECT_EQ(bundle->meta().scene_hash, scene_hash(load_scene_config(kHouseScene)));
+}
+
+TEST_F(PipelineTest, BrokenModelLeavesNoBundle) {
+  // The house cut off mid-entity.
+  std::ifstream in(std::string(WALK_SHARED_DATA) + "/eplus-house-doors/house.dxf");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string broken = (dir_ / "broken.dxf").string();
+  std::ofstream(broken) << text.substr(0, text.size() / 2);
+  const std::string out = (dir_ / "broken.walk").string();
+  try {
+    compile_to_file(scene_for(broken), out, true);
+    FAIL() << "a truncated DXF compiled";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.dxf"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_EQ(e.path().string().find(".walk"), std::string::npos) << e.path();
+}
+
+TEST_F(PipelineTest, ModelWithNothingToDrawIsAnError) {
+  const std::string scene = scene_for(std::string(WALK_SHARED_DATA) + "/eplus-house-doors/house.dxf", "\n");
+  // Prepend a rule that ignores every face.
+  std::ifstream in(scene);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  text.replace(text.find("[[rules]]"), 0, "[[rules]]\nlayer = \".*\"\nrole = \"ignored\"\n\n");
+  std::ofstream(scene) << text;
+  try {
+    compile_to_file(scene, (dir_ / "empty.walk").string(), true);
+    FAIL() << "an empty model compiled";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("empty model"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace walk::compiler
