@@ -22,38 +22,44 @@ struct Builder {
                      model::Role role = model::Role::Opaque) {
     const auto id = std::uint32_t(c.polygons.size());
     const glm::dvec3 albedo = room_b ? scene.albedo_b : scene.albedo_a;
-    const glm::dvec3 n = glm::normalize(glm::cross(u, v));
-    const glm::dvec3 corners[4] = {corner, corner + u, corner + u + v, corner + v};
+    const glm::dvec3 n3 = glm::normalize(glm::cross(u, v));
+    // An n x n grid of quads (n = scene.subdivisions): the same picture, more triangles for timing.
+    const int n = std::max(1, scene.subdivisions);
     model::PolygonRecord p{};
     p.first_index = std::uint32_t(c.indices.size());
-    p.index_count = 6;
+    p.index_count = std::uint32_t(6 * n * n);
     p.first_vertex = std::uint32_t(c.vertices.size());
-    p.vertex_count = 4;
+    p.vertex_count = std::uint32_t((n + 1) * (n + 1));
     p.material = room_b ? 1 : 0;
     p.group = room_b ? group_b : group_a;
     p.role = std::uint32_t(role);
     c.polygons.push_back(p);
     const double* circuit = room_b ? scene.circuit_b : scene.circuit_a;
-    for (const auto& q : corners) {
-      model::VertexRecord vr{};
-      for (int k = 0; k < 3; ++k) {
-        vr.position[k] = float(q[k]);
-        vr.normal[k] = float(n[k]);
-        vr.albedo[k] = float(albedo[k]);
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const glm::dvec3 q = corner + u * (double(i) / n) + v * (double(j) / n);
+        model::VertexRecord vr{};
+        for (int k = 0; k < 3; ++k) {
+          vr.position[k] = float(q[k]);
+          vr.normal[k] = float(n3[k]);
+          vr.albedo[k] = float(albedo[k]);
+        }
+        vr.polygon = id;
+        c.vertices.push_back(vr);
+        for (int ci = 0; ci < scene.circuits; ++ci)
+          for (int k = 0; k < 3; ++k)
+            c.light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor) : 0.0f);
       }
-      vr.polygon = id;
-      c.vertices.push_back(vr);
-      for (int ci = 0; ci < scene.circuits; ++ci)
-        for (int k = 0; k < 3; ++k)
-          c.light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor) : 0.0f);
-    }
-    const std::uint32_t b = p.first_vertex;
-    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) c.indices.push_back(i);
+    const std::uint32_t b = p.first_vertex, row = std::uint32_t(n + 1);
+    for (std::uint32_t j = 0; j < std::uint32_t(n); ++j)
+      for (std::uint32_t i = 0; i < std::uint32_t(n); ++i) {
+        const std::uint32_t q = b + j * row + i;
+        for (std::uint32_t k : {q, q + 1, q + row + 1, q, q + row + 1, q + row}) c.indices.push_back(k);
+      }
     return id;
   }
 
-  // Walls at x = x0 and x = x0 + 4, floor, ceiling, side walls; `shared_at_max` says which x wall has the
-  // door.
+  // Walls at x = x0 and x = x0 + 4, floor, ceiling, side walls; the shared wall at x = 4 has the door.
   void room(double x0, bool room_b) {
     const double x1 = x0 + 4.0, f = scene.wall_factor;
     rect({x0, 0, 0}, {4, 0, 0}, {0, 4, 0}, room_b, scene.floor_factor);    // floor, +z

@@ -23,6 +23,7 @@ struct TwoRooms {
   float ambient = 8.0f;
   float exposure = 100.0f;
   bool cell_a_sees_b = true;  // false: room B's polygons are left out of cell A's PVS
+  int subdivisions = 1;       // each rectangle as an n x n grid of quads
   int circuits = 2;           // more than 2: extra circuits with no light (for the limit test)
 };
 
