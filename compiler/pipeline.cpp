@@ -74,17 +74,23 @@ model::Polygon panel_polygon(const model::Luminaire& l) {
 
 }  // namespace
 
-std::uint64_t scene_hash(const SceneConfig& config) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  h = fnv1a(h, &kCompilerRevision, sizeof kCompilerRevision);
-  h = fnv1a(h, config.text.data(), config.text.size());
-  std::ifstream in(config.model_file, std::ios::binary);
+std::uint64_t hash_file(std::uint64_t h, const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
   std::vector<char> buffer(1 << 16);
   while (in) {
     in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
     h = fnv1a(h, buffer.data(), static_cast<std::size_t>(in.gcount()));
   }
   return h;
+}
+
+std::uint64_t scene_hash(const SceneConfig& config) {
+  // The running compiler binary is an input too: any rebuild of the compiler invalidates old bundles, so
+  // "up to date" can never hide a compiler change (the revision constant alone relies on people bumping it).
+  static const std::uint64_t compiler_identity = hash_file(0xcbf29ce484222325ull, "/proc/self/exe");
+  std::uint64_t h = fnv1a(compiler_identity, &kCompilerRevision, sizeof kCompilerRevision);
+  h = fnv1a(h, config.text.data(), config.text.size());
+  return hash_file(h, config.model_file);
 }
 
 CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options) {
@@ -95,19 +101,6 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     StageTimer t(stages, "import");
     model = read_dxf(config.model_file, DxfOptions{config.metres_per_unit});
     t.done(0, model.polygons.size(), config.model_file);
-  }
-  {
-    StageTimer t(stages, "recentre");
-    const model::Bounds b = bounds_of(model);
-    // A whole-metre local origin at the model's centre: float rendering then keeps sub-millimetre precision
-    // even for drawings placed far from the world origin.
-    model.origin = glm::round(b.centre());
-    for (auto& p : model.polygons) {
-      for (auto& v : p.vertices) v -= model.origin;
-      for (auto& hole : p.holes)
-        for (auto& v : hole) v -= model.origin;
-    }
-    t.done(model.polygons.size(), model.polygons.size());
   }
   {
     StageTimer t(stages, "rules");
@@ -121,6 +114,19 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       throw Error(located(config.model_file, 0,
                           "empty model: no opaque or glass faces after the scene's rules",
                           "check the [[rules]] in " + config.path));
+  }
+  {
+    StageTimer t(stages, "recentre");
+    const model::Bounds b = bounds_of(model);
+    // A whole-metre local origin at the model's centre: float rendering then keeps sub-millimetre precision
+    // even for drawings placed far from the world origin.
+    model.origin = glm::round(b.centre());
+    for (auto& p : model.polygons) {
+      for (auto& v : p.vertices) v -= model.origin;
+      for (auto& hole : p.holes)
+        for (auto& v : hole) v -= model.origin;
+    }
+    t.done(model.polygons.size(), model.polygons.size());
   }
   {
     StageTimer t(stages, "openings");
