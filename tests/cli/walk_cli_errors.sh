@@ -41,7 +41,7 @@ check "unknown unit" "$tmp/c.walk" "c.toml:3" "model.units" "parsec" -- \
 head -c 30000 "$src/../shared/data/eplus-house-doors/house.dxf" >"$tmp/truncated.dxf"
 check "truncated DXF" "$tmp/d.walk" "truncated.dxf:" -- "$walk" compile "$(scene d "$tmp/truncated.dxf")" -o "$tmp/d.walk"
 
-awk 'done == 0 && prev == " 20" { $0 = " twelve"; done = 1 } { prev = $0; print }' \
+awk 'face == 1 && done == 0 && prev == " 20" { $0 = " twelve"; done = 1 } /^3DFACE$/ { face = 1 } { prev = $0; print }' \
   "$src/../shared/data/eplus-house-doors/house.dxf" >"$tmp/garbled.dxf"
 line=$(grep -n '^ twelve$' "$tmp/garbled.dxf" | cut -d: -f1)
 check "non-numeric coordinate" "$tmp/e.walk" "garbled.dxf:$line" -- "$walk" compile "$(scene e "$tmp/garbled.dxf")" -o "$tmp/e.walk"
