@@ -44,14 +44,61 @@ TEST(Backends, EachHeadlessBackendGivesACoreContext) {
   }
 }
 
-TEST(Backends, AutoWithoutADisplayPicksEgl) {
-  ::unsetenv("DISPLAY");
-  ::unsetenv("WAYLAND_DISPLAY");
+// Sets (or with nullptr, unsets) an environment variable for one scope: the GLFW test in this binary needs
+// DISPLAY intact under xvfb-run.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+    if (value)
+      ::setenv(name, value, 1);
+    else
+      ::unsetenv(name);
+  }
+  ~ScopedEnv() {
+    if (had_)
+      ::setenv(name_, old_.c_str(), 1);
+    else
+      ::unsetenv(name_);
+  }
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool had_ = false;
+};
+
+std::string auto_backend_name() {
   BackendOptions options;
   options.width = 32;
   options.height = 32;
-  auto backend = Backend::create(options);
-  EXPECT_STREQ(backend->name(), "egl");
+  return Backend::create(options)->name();
+}
+
+TEST(Backends, AutoWithoutADisplayPicksEgl) {
+  ScopedEnv display("DISPLAY", nullptr), wayland("WAYLAND_DISPLAY", nullptr);
+  EXPECT_EQ(auto_backend_name(), "egl");
+}
+
+TEST(Backends, AutoFallsBackWhenTheDisplayCannotBeOpened) {
+  ScopedEnv display("DISPLAY", ":4242"), wayland("WAYLAND_DISPLAY", nullptr);  // no server there
+  EXPECT_EQ(auto_backend_name(), "egl");
+}
+
+TEST(Backends, RequestedBackendThatFailsNamesItself) {
+#if WALK_WITH_GLFW
+  ScopedEnv display("DISPLAY", ":4242"), wayland("WAYLAND_DISPLAY", nullptr);
+  BackendOptions options;
+  options.kind = BackendKind::GLFW;
+  try {
+    (void)Backend::create(options);
+    FAIL() << "a window opened on a display that does not exist";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'glfw' could not start"), std::string::npos) << message;
+    EXPECT_NE(message.find("auto, osmesa, egl, glfw"), std::string::npos) << message;
+  }
+#endif
 }
 
 TEST(Backends, BadSizeIsAnError) {

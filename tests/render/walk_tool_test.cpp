@@ -1,0 +1,69 @@
+// The `walk render` command end to end: compile the sample house with `walk compile`, render a view of its
+// ground floor with each headless backend, and check the PNG holds a lit room.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace walk::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kWalk = std::string(WALK_BINARY_DIR) + "/tools/walk";
+
+int run(const std::string& command, std::string& output) {
+  const fs::path log = fs::temp_directory_path() / ("walk_tool_test_" + std::to_string(::getpid()) + ".log");
+  const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  output = text.str();
+  fs::remove(log);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(WalkTool, RendersACompiledHouse) {
+  ASSERT_TRUE(fs::exists(kWalk)) << kWalk << " is missing: build the `walk` target as well as the tests";
+  const fs::path dir = fs::temp_directory_path() / ("walk_tool_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string bundle = (dir / "house.walk").string();
+  std::string output;
+  ASSERT_EQ(run(kWalk + " compile " + WALK_SOURCE_DIR + "/config/scenes/house.toml -o " + bundle, output), 0)
+      << output;
+  for (const char* backend : {"egl", "osmesa"}) {
+    const std::string png = (dir / (std::string(backend) + ".png")).string();
+    // Ground floor, 1.6 m above it, looking across the room: see `walk inspect` for the bounds.
+    ASSERT_EQ(run(kWalk + " render " + bundle + " --eye 3,0,-4.4 --look 8,1,-4.6 --size 320x180 --backend " +
+                      backend + " -o " + png,
+                  output),
+              0)
+        << output;
+    EXPECT_NE(output.find(std::string("backend ") + backend), std::string::npos) << output;
+    png_image image;
+    std::memset(&image, 0, sizeof image);
+    image.version = PNG_IMAGE_VERSION;
+    ASSERT_TRUE(png_image_begin_read_from_file(&image, png.c_str())) << png;
+    image.format = PNG_FORMAT_RGBA;
+    std::vector<std::uint8_t> rgba(PNG_IMAGE_SIZE(image));
+    ASSERT_TRUE(png_image_finish_read(&image, nullptr, rgba.data(), 0, nullptr)) << png;
+    EXPECT_EQ(image.width, 320u);
+    EXPECT_EQ(image.height, 180u);
+    // Most of the frame is lit wall, floor and ceiling: few pixels are the black clear colour.
+    std::size_t black = 0;
+    for (std::size_t i = 0; i < rgba.size(); i += 4) black += rgba[i] + rgba[i + 1] + rgba[i + 2] == 0;
+    EXPECT_LT(black, rgba.size() / 4 / 4) << backend << ": " << black << " black pixels";
+  }
+  // A bad backend name is refused with the accepted values.
+  EXPECT_NE(run(kWalk + " render " + bundle + " --eye 3,0,-4.4 --look 8,1,-4.6 --backend vulkan", output), 0);
+  EXPECT_NE(output.find("auto, osmesa, egl, glfw"), std::string::npos) << output;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace walk::render
