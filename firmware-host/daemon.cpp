@@ -1,0 +1,213 @@
+#include "firmware-host/daemon.hpp"
+
+#include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <thread>
+
+#include "model/error.hpp"
+
+namespace walk::kiosk {
+namespace {
+
+constexpr double kMaxRealtimeStep = 0.25;  // after a stall, do not teleport the walker through walls
+constexpr double kHugeZ = 1e9;
+
+NavSettings nav_settings(const WalkerConfig& w) {
+  NavSettings s;
+  s.step_height = w.step_height;
+  s.head_height = w.eye_height + w.head_clearance;
+  return s;
+}
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+Daemon::Daemon(const KioskConfig& config, const model::Bundle& bundle, FrameRenderer& renderer,
+               DeviceSet devices)
+    : config_(config),
+      bundle_(bundle),
+      renderer_(renderer),
+      devices_(std::move(devices)),
+      origin_(bundle.meta().origin[0], bundle.meta().origin[1], bundle.meta().origin[2]),
+      navigator_({bundle.vertices(), bundle.indices(), bundle.polygons()}, nav_settings(config.walker)) {
+  // Start: world coordinates from the config, local inside.
+  double z = kHugeZ;
+  if (config.start.floor_z) z = *config.start.floor_z - origin_.z;
+  if (config.start.eye_z) z = *config.start.eye_z - config.walker.eye_height - origin_.z;
+  const glm::dvec3 start{config.start.x - origin_.x, config.start.y - origin_.y, z};
+  if (!navigator_.place(start))
+    throw Error(
+        located(config.path, 0,
+                fmt::format("start: no floor at world ({:g}, {:g}) within step height below the given z, "
+                            "or the walker's body overlaps a wall there",
+                            config.start.x, config.start.y),
+                "move [start] into a room of the bundle"));
+  heading_ = config.start.heading;
+
+  levels_.resize(bundle.circuits().size());
+  for (std::size_t i = 0; i < levels_.size(); ++i) levels_[i] = bundle.circuits()[i].default_level;
+  for (std::size_t ch = 0; ch < config.dimmer_circuits.size(); ++ch) {
+    const auto& name = config.dimmer_circuits[ch];
+    std::uint32_t found = 0xffffffffu;
+    for (std::uint32_t c = 0; c < bundle.circuits().size(); ++c)
+      if (bundle.string(bundle.circuits()[c].name) == name) found = c;
+    if (found == 0xffffffffu)
+      throw Error(located(config.path, 0,
+                          fmt::format("dimmers.channels[{}]: the bundle has no circuit named '{}'", ch, name),
+                          "walk inspect lists the circuits"));
+    channel_circuit_.push_back(found);
+  }
+  if (devices_.dimmer_panel && devices_.dimmer_panel->channel_count() < channel_circuit_.size())
+    throw Error(located(config.path, 0,
+                        fmt::format("dimmers.channels maps {} channels but the dimmer panel has {}",
+                                    channel_circuit_.size(), devices_.dimmer_panel->channel_count())));
+}
+
+std::string Daemon::room_name() const {
+  if (!group_ || *group_ >= bundle_.groups().size()) return "";
+  return std::string(bundle_.string(bundle_.groups()[*group_].name));
+}
+
+void Daemon::track_visits() {
+  const glm::dvec3 eye = navigator_.feet() + glm::dvec3(0, 0, config_.walker.eye_height);
+  const double p[3] = {eye.x, eye.y, eye.z};
+  cell_ = bundle_.locate_cell(p);
+  auto& cells = summary_.cells_visited;
+  if (std::find(cells.begin(), cells.end(), cell_) == cells.end()) cells.push_back(cell_);
+
+  const auto poly = navigator_.floor_polygon();
+  const std::optional<std::uint32_t> group =
+      poly < bundle_.polygons().size() ? std::optional(bundle_.polygons()[poly].group) : std::nullopt;
+  if (group == group_) return;
+  const std::string from = room_name();
+  group_ = group;
+  const std::string to = room_name();
+  const glm::dvec3 w = to_world(navigator_.feet());
+  if (summary_.room_sequence.empty())
+    spdlog::info("walker starts in room '{}' at ({:.2f}, {:.2f}, {:.2f})", to, w.x, w.y, w.z);
+  else
+    spdlog::info("room '{}' -> '{}' at ({:.2f}, {:.2f}, {:.2f})", from, to, w.x, w.y, w.z);
+  summary_.room_sequence.push_back(to);
+  auto& rooms = summary_.rooms_visited;
+  if (std::find(rooms.begin(), rooms.end(), to) == rooms.end()) rooms.push_back(to);
+}
+
+void Daemon::frame(double now, double dt) {
+  double speed = 0.0, steering = 0.0, yaw = 0.0;
+  if (devices_.treadmill)
+    if (auto r = devices_.treadmill->poll(now)) {
+      speed = r->speed;
+      steering = r->steering;
+    }
+  if (devices_.head_tracker)
+    if (auto r = devices_.head_tracker->poll(now)) {
+      yaw = r->yaw;
+      pitch_ = r->pitch;
+    }
+  if (devices_.dimmer_panel)
+    if (auto r = devices_.dimmer_panel->poll(now))
+      for (std::size_t ch = 0; ch < channel_circuit_.size() && ch < r->levels.size(); ++ch)
+        levels_[channel_circuit_[ch]] = static_cast<float>(std::clamp(r->levels[ch], 0.0, 1.0));
+
+  // The walker goes where the body (start heading + treadmill steering) and the head point together.
+  heading_ = config_.start.heading + steering + yaw;
+  navigator_.walk(speed, heading_, dt);
+  track_visits();
+
+  render::View view;
+  view.eye = navigator_.feet() + glm::dvec3(0, 0, config_.walker.eye_height);
+  view.forward = {std::cos(heading_) * std::cos(pitch_), std::sin(heading_) * std::cos(pitch_),
+                  std::sin(pitch_)};
+  view.fov_y_degrees = config_.display.fov_y_degrees;
+  renderer_.set_dimmers(levels_);
+  const double t0 = wall_seconds();
+  renderer_.draw(view);
+  renderer_.present();
+  summary_.render_seconds += wall_seconds() - t0;
+  ++summary_.frames;
+
+  if (config_.output.png_every > 0.0 && now + 1e-9 >= next_png_) {
+    const auto name = fmt::format("frame_{:06d}.png", summary_.frames_saved);
+    renderer_.save_png((std::filesystem::path(config_.output.folder) / name).string());
+    ++summary_.frames_saved;
+    next_png_ += config_.output.png_every;
+  }
+}
+
+Summary Daemon::run(const std::atomic<bool>& stop) {
+  const bool sim = simulated();
+  summary_.mode = sim ? "simulated" : "realtime";
+  summary_.renderer = renderer_.name();
+  summary_.stopped_by = "end";
+  std::error_code ec;
+  std::filesystem::create_directories(config_.output.folder, ec);
+  if (ec) throw Error(located(config_.output.folder, 0, "cannot create the output folder: " + ec.message()));
+
+  SimulatedClock sim_clock;
+  SteadyClock steady_clock;
+  const Clock& clock = sim ? static_cast<const Clock&>(sim_clock) : steady_clock;
+  const double step = 1.0 / config_.simulation.frame_rate;
+  const auto total_frames = static_cast<std::uint64_t>(std::llround(config_.simulation.seconds / step));
+  const double wall_start = wall_seconds();
+  double last = clock.now();
+  track_visits();  // the start room and cell count as visited before the first step
+
+  for (std::uint64_t n = 0;; ++n) {
+    if (stop.load()) {
+      summary_.stopped_by = "signal";
+      break;
+    }
+    if (renderer_.close_requested()) {
+      summary_.stopped_by = "window";
+      break;
+    }
+    if (sim && n >= total_frames) break;
+    if (sim) sim_clock.set(static_cast<double>(n) * step);  // frame * step: no accumulated rounding
+    const double now = clock.now();
+    const double dt = sim ? step : std::min(now - last, kMaxRealtimeStep);
+    last = now;
+    frame(now, dt);
+
+    notifier_.ready();
+    const glm::dvec3 w = to_world(navigator_.feet());
+    const double wall = wall_seconds() - wall_start;
+    notifier_.frame(wall,
+                    fmt::format("{:.1f} fps, cell {}, room {}, at ({:.2f}, {:.2f}, {:.2f})",
+                                summary_.render_seconds > 0 ? summary_.frames / summary_.render_seconds : 0.0,
+                                cell_, room_name(), w.x, w.y, w.z));
+    summary_.simulated_seconds = sim ? static_cast<double>(n + 1) * step : now;
+    if (!sim && !renderer_.windowed()) {
+      // Headless real time: hold the frame rate instead of spinning (a window waits on vsync instead).
+      const double next = now + step;
+      const double left = next - clock.now();
+      if (left > 0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
+    }
+  }
+  notifier_.stopping();
+
+  summary_.wall_seconds = wall_seconds() - wall_start;
+  summary_.fps = summary_.render_seconds > 0 ? summary_.frames / summary_.render_seconds : 0.0;
+  summary_.distance = navigator_.distance_walked();
+  summary_.final_feet = to_world(navigator_.feet());
+  summary_.final_eye = summary_.final_feet + glm::dvec3(0, 0, config_.walker.eye_height);
+  summary_.final_heading_deg = heading_ * 180.0 / std::numbers::pi;
+  summary_.final_room = room_name();
+  summary_.final_cell = cell_;
+  write_summary(config_.output.folder, summary_);
+  spdlog::info(
+      "stopped ({}): {} frames, {:.1f} s simulated, {:.1f} s wall, {:.1f} fps, {:.1f} m walked, rooms: {}",
+      summary_.stopped_by, summary_.frames, summary_.simulated_seconds, summary_.wall_seconds, summary_.fps,
+      summary_.distance, fmt::join(summary_.rooms_visited, ", "));
+  return summary_;
+}
+
+}  // namespace walk::kiosk

@@ -1,0 +1,67 @@
+#pragma once
+// The kiosk's TOML config: which bundle, which display, where the walker starts, which devices, how dimmer
+// channels map to circuits, simulation and output settings. Angles are degrees in the file, radians here;
+// relative paths are resolved against the config file's folder. Errors name the file, line and key.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace walk::kiosk {
+
+struct DisplayConfig {
+  std::string backend = "auto";  // auto | osmesa | egl | glfw
+  int width = 1280;
+  int height = 720;
+  bool fullscreen = false;
+  double fov_y_degrees = 60.0;
+};
+
+struct StartConfig {
+  double x = 0.0, y = 0.0;        // world metres
+  std::optional<double> floor_z;  // world z of the floor to stand on ...
+  std::optional<double> eye_z;    // ... or of the eye (floor = eye - eye height); neither: highest floor
+  double heading = 0.0;           // radians, 0 = +x, counter-clockwise
+};
+
+struct WalkerConfig {
+  double eye_height = 1.6;  // above the floor
+  double step_height = 0.35;
+  double head_clearance = 0.2;  // collision band reaches eye height + this
+};
+
+struct DeviceConfig {
+  std::string backend;  // "mock": replay `trace`
+  std::string trace;    // resolved path
+};
+
+struct DevicesConfig {
+  std::optional<DeviceConfig> treadmill, head_tracker, dimmer_panel;
+};
+
+struct SimulationConfig {
+  double frame_rate = 30.0;  // simulated frames per second (fixed step); also the real-time frame cap
+  double seconds = 0.0;      // > 0: run a simulated clock for this long; 0: real time until stopped
+};
+
+struct OutputConfig {
+  std::string folder = "walkd-out";  // summary.json and saved frames
+  double png_every = 0.0;            // seconds of (simulated) time between saved frames; 0: never
+};
+
+struct KioskConfig {
+  std::string path;    // the config file itself
+  std::string bundle;  // resolved path of the .walk bundle
+  DisplayConfig display;
+  StartConfig start;
+  WalkerConfig walker;
+  DevicesConfig devices;
+  std::vector<std::string> dimmer_circuits;  // channel i drives the circuit named dimmer_circuits[i]
+  SimulationConfig simulation;
+  OutputConfig output;
+};
+
+// Throws walk::Error "file:line: key: problem" for a missing file, bad syntax, a wrong type, an
+// out-of-range value or an unknown key.
+[[nodiscard]] KioskConfig load_kiosk_config(const std::string& path);
+
+}  // namespace walk::kiosk

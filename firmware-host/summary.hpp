@@ -1,0 +1,36 @@
+#pragma once
+// What a walkd run did, written as summary.json when it ends (normally or on SIGTERM) so simulated runs
+// can be checked by tests and compared between builds.
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <string>
+#include <vector>
+
+namespace walk::kiosk {
+
+struct Summary {
+  std::string mode;        // "simulated" or "realtime"
+  std::string stopped_by;  // "end", "signal" or "window"
+  std::string renderer;
+  std::uint64_t frames = 0;
+  double simulated_seconds = 0.0;            // time on the daemon's clock
+  double wall_seconds = 0.0;                 // whole loop
+  double render_seconds = 0.0;               // wall time inside draw + present
+  double fps = 0.0;                          // frames / render_seconds
+  std::vector<std::uint32_t> cells_visited;  // in first-visit order
+  std::vector<std::string> rooms_visited;    // group names, first-visit order
+  std::vector<std::string> room_sequence;    // every room change, starting with the start room
+  double distance = 0.0;                     // metres walked
+  std::uint64_t frames_saved = 0;
+  glm::dvec3 final_feet{0.0};  // world metres
+  glm::dvec3 final_eye{0.0};
+  double final_heading_deg = 0.0;
+  std::string final_room;
+  std::uint32_t final_cell = 0;
+};
+
+[[nodiscard]] std::string summary_json(const Summary& summary);
+// Writes `folder`/summary.json (creating the folder); throws walk::Error naming the path on failure.
+void write_summary(const std::string& folder, const Summary& summary);
+
+}  // namespace walk::kiosk

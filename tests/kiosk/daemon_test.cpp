@@ -1,0 +1,171 @@
+#include "firmware-host/daemon.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "fake_renderer.hpp"
+#include "firmware-host/stop_signal.hpp"
+#include "model/error.hpp"
+#include "test_bundle.hpp"
+
+namespace walk::kiosk {
+namespace {
+
+namespace fs = std::filesystem;
+
+class DaemonTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("walk_daemon_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    bundle_ = model::Bundle::open(testing::write_two_room_bundle((dir_ / "rooms.walk").string()));
+    // World = local + (100, 200, 10). Start in room A facing the door (+x).
+    config_.path = (dir_ / "kiosk.toml").string();
+    config_.bundle = (dir_ / "rooms.walk").string();
+    config_.start.x = 102.0;
+    config_.start.y = 202.0;
+    config_.start.floor_z = 10.0;
+    config_.simulation.frame_rate = 30.0;
+    config_.simulation.seconds = 5.0;
+    config_.output.folder = (dir_ / "out").string();
+    config_.devices.treadmill = DeviceConfig{"mock", write("t.csv", "time,speed\n0,0\n0.5,1.0\n4.5,0\n")};
+    config_.devices.head_tracker = DeviceConfig{"mock", write("h.csv", "time,yaw_deg,pitch_deg\n0,0,-5\n")};
+    config_.devices.dimmer_panel = DeviceConfig{"mock", write("d.csv", "time,ch0\n0,0.0\n2,0.75\n")};
+    config_.dimmer_circuits = {"B"};
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    const auto path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  Summary run(testing::FakeRenderer& renderer, const std::atomic<bool>& stop) {
+    Daemon daemon(config_, *bundle_, renderer, open_devices(config_.devices));
+    return daemon.run(stop);
+  }
+  std::string summary_text() const {
+    std::ifstream in(dir_ / "out" / "summary.json");
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  fs::path dir_;
+  std::unique_ptr<model::Bundle> bundle_;
+  KioskConfig config_;
+};
+
+TEST_F(DaemonTest, SimulatedWalkGoesThroughTheDoorAndWritesASummary) {
+  testing::FakeRenderer renderer;
+  std::atomic<bool> stop{false};
+  const Summary s = run(renderer, stop);
+  EXPECT_EQ(s.mode, "simulated");
+  EXPECT_EQ(s.stopped_by, "end");
+  EXPECT_EQ(s.frames, 150u);
+  EXPECT_EQ(renderer.views.size(), 150u);
+  EXPECT_NEAR(s.simulated_seconds, 5.0, 1e-9);
+  EXPECT_NEAR(s.distance, 4.0, 0.04);  // 4 s at 1 m/s, frame-quantised
+  EXPECT_NEAR(s.final_feet.x, 106.0, 0.04);
+  EXPECT_NEAR(s.final_feet.z, 10.29, 1e-5);  // stepped up the sill into room B
+  EXPECT_EQ(s.rooms_visited, (std::vector<std::string>{"A", "B"}));
+  EXPECT_EQ(s.room_sequence, (std::vector<std::string>{"A", "B"}));
+  EXPECT_EQ(s.cells_visited, (std::vector<std::uint32_t>{0, 1}));
+  EXPECT_EQ(s.final_room, "B");
+  // Eye height above the floor, pitch from the head tracker, dimmer channel 0 -> circuit "B" (index 1).
+  EXPECT_NEAR(renderer.views.back().eye.z, 0.29 + config_.walker.eye_height, 1e-5);
+  EXPECT_LT(renderer.views.back().forward.z, 0.0);
+  ASSERT_EQ(renderer.levels.size(), 2u);
+  EXPECT_FLOAT_EQ(renderer.levels[0], 1.0f);  // default level of circuit A
+  EXPECT_FLOAT_EQ(renderer.levels[1], 0.75f);
+  const auto json = summary_text();
+  EXPECT_NE(json.find("\"frames\": 150"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"rooms_visited\": [\"A\", \"B\"]"), std::string::npos) << json;
+}
+
+TEST_F(DaemonTest, TwoSimulatedRunsEndAtTheSamePlace) {
+  config_.devices.head_tracker =
+      DeviceConfig{"mock", write("h2.csv", "time,yaw_deg\n0,0\n1,20\n2,-35\n3,90\n")};
+  testing::FakeRenderer r1, r2;
+  std::atomic<bool> stop{false};
+  const Summary a = run(r1, stop);
+  const Summary b = run(r2, stop);
+  EXPECT_EQ(a.final_feet, b.final_feet);
+  EXPECT_EQ(a.distance, b.distance);
+  EXPECT_EQ(a.frames, b.frames);
+  ASSERT_EQ(r1.views.size(), r2.views.size());
+  for (std::size_t i = 0; i < r1.views.size(); ++i) ASSERT_EQ(r1.views[i].eye, r2.views[i].eye) << i;
+}
+
+TEST_F(DaemonTest, StopFlagEndsTheRunCleanlyWithASummary) {
+  testing::FakeRenderer renderer;
+  std::atomic<bool> stop{false};
+  renderer.on_draw = [&](std::size_t frames) {
+    if (frames == 10) stop = true;
+  };
+  const Summary s = run(renderer, stop);
+  EXPECT_EQ(s.stopped_by, "signal");
+  EXPECT_EQ(s.frames, 10u);
+  EXPECT_NE(summary_text().find("\"stopped_by\": \"signal\""), std::string::npos);
+}
+
+TEST_F(DaemonTest, SigtermStopsTheLoop) {
+  install_stop_handlers();
+  stop_flag() = false;
+  testing::FakeRenderer renderer;
+  renderer.on_draw = [](std::size_t frames) {
+    if (frames == 7) std::raise(SIGTERM);
+  };
+  const Summary s = run(renderer, stop_flag());
+  stop_flag() = false;
+  EXPECT_EQ(s.stopped_by, "signal");
+  EXPECT_EQ(s.frames, 7u);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "summary.json"));
+}
+
+TEST_F(DaemonTest, SavesAFrameEveryNSimulatedSeconds) {
+  config_.output.png_every = 2.0;
+  testing::FakeRenderer renderer;
+  std::atomic<bool> stop{false};
+  const Summary s = run(renderer, stop);
+  EXPECT_EQ(s.frames_saved, 3u);  // t = 0, 2, 4
+  ASSERT_EQ(renderer.saved.size(), 3u);
+  EXPECT_TRUE(fs::exists(renderer.saved.front()));
+}
+
+TEST_F(DaemonTest, UnknownCircuitAndBadStartAreReportedWithTheirKeys) {
+  testing::FakeRenderer renderer;
+  config_.dimmer_circuits = {"B", "kitchen"};
+  try {
+    Daemon d(config_, *bundle_, renderer, {});
+    FAIL() << "expected an error";
+  } catch (const walk::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("dimmers.channels[1]"), std::string::npos) << e.what();
+  }
+  config_.dimmer_circuits = {};
+  config_.start.x = 150.0;
+  try {
+    Daemon d(config_, *bundle_, renderer, {});
+    FAIL() << "expected an error";
+  } catch (const walk::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("start"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(DaemonTest, WalkerWithoutDevicesStandsStill) {
+  testing::FakeRenderer renderer;
+  std::atomic<bool> stop{false};
+  config_.dimmer_circuits = {};
+  Daemon daemon(config_, *bundle_, renderer, {});
+  const Summary s = daemon.run(stop);
+  EXPECT_EQ(s.distance, 0.0);
+  EXPECT_EQ(s.final_feet, glm::dvec3(102, 202, 10));
+}
+
+}  // namespace
+}  // namespace walk::kiosk

@@ -1,0 +1,32 @@
+#pragma once
+// A FrameRenderer without GL: records what the loop asked for, and can request a stop mid-run.
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <functional>
+#include <vector>
+
+#include "firmware-host/frame_renderer.hpp"
+
+namespace walk::kiosk::testing {
+
+class FakeRenderer final : public FrameRenderer {
+ public:
+  [[nodiscard]] const char* name() const override { return "fake"; }
+  void set_dimmers(std::span<const float> l) override { levels.assign(l.begin(), l.end()); }
+  void draw(const render::View& view) override {
+    views.push_back(view);
+    if (on_draw) on_draw(views.size());
+  }
+  void save_png(const std::string& path) override {
+    std::ofstream(path) << "png";
+    saved.push_back(path);
+  }
+
+  std::vector<float> levels;
+  std::vector<render::View> views;
+  std::vector<std::string> saved;
+  std::function<void(std::size_t frames)> on_draw;
+};
+
+}  // namespace walk::kiosk::testing
