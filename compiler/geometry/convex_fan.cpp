@@ -1,5 +1,6 @@
 #include "compiler/geometry/convex_fan.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace walk::compiler {
@@ -19,24 +20,90 @@ bool is_convex(const ClipperLib::Path& path) {
   return true;
 }
 
+namespace {
+
+// Pieces up to this many vertices get the best triangulation by dynamic programming (O(n^3)); slab pieces
+// rarely have more than 8. Larger ones (long merged chains) get the best single fan (O(n^2)).
+constexpr std::size_t kMaxOptimalVertices = 48;
+
+// Triangle quality: its smallest altitude (twice the area over the longest side), in Clipper units; zero or
+// negative for a degenerate or clockwise triangle. It measures how thin a sliver is.
+double altitude(const ClipperLib::IntPoint& a, const ClipperLib::IntPoint& b, const ClipperLib::IntPoint& c) {
+  const double twice = cross2(a, b, c);
+  if (twice <= 0.0) return twice;
+  const auto length = [](const ClipperLib::IntPoint& p, const ClipperLib::IntPoint& q) {
+    return std::hypot(static_cast<double>(q.X - p.X), static_cast<double>(q.Y - p.Y));
+  };
+  return twice / std::max({length(a, b), length(b, c), length(c, a)});
+}
+
+// Triangulation of a convex polygon maximising its thinnest triangle; false when every triangulation has a
+// degenerate triangle.
+bool optimal(const ClipperLib::Path& piece, std::vector<std::array<ClipperLib::IntPoint, 3>>& triangles) {
+  const std::size_t n = piece.size();
+  std::vector<double> best(n * n, 1e300);
+  std::vector<std::size_t> split(n * n, 0);
+  for (std::size_t gap = 2; gap < n; ++gap) {
+    for (std::size_t i = 0; i + gap < n; ++i) {
+      const std::size_t j = i + gap;
+      double value = -1e300;
+      for (std::size_t k = i + 1; k < j; ++k) {
+        const double q = std::min({altitude(piece[i], piece[k], piece[j]), best[i * n + k], best[k * n + j]});
+        if (q > value) {
+          value = q;
+          split[i * n + j] = k;
+        }
+      }
+      best[i * n + j] = value;
+    }
+  }
+  if (!(best[n - 1] > 0.0)) return false;
+  std::vector<std::pair<std::size_t, std::size_t>> todo{{0, n - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    if (j - i < 2) continue;
+    const std::size_t k = split[i * n + j];
+    triangles.push_back({piece[i], piece[k], piece[j]});
+    todo.emplace_back(i, k);
+    todo.emplace_back(k, j);
+  }
+  return true;
+}
+
+// The fan from the vertex whose thinnest triangle is thickest; false when every fan has a degenerate one.
+bool best_fan(const ClipperLib::Path& piece, std::vector<std::array<ClipperLib::IntPoint, 3>>& triangles) {
+  const std::size_t n = piece.size();
+  std::size_t best = n;
+  double best_min = 0.0;
+  for (std::size_t a = 0; a < n; ++a) {
+    double smallest = 1e300;
+    for (std::size_t k = 1; k + 1 < n && smallest > best_min; ++k) {
+      smallest = std::min(smallest, altitude(piece[a], piece[(a + k) % n], piece[(a + k + 1) % n]));
+    }
+    if (smallest > best_min) {
+      best_min = smallest;
+      best = a;
+    }
+  }
+  if (best == n) return false;
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    triangles.push_back({piece[best], piece[(best + k) % n], piece[(best + k + 1) % n]});
+  }
+  return true;
+}
+
+}  // namespace
+
 void fan_convex(const ClipperLib::Path& piece, std::vector<std::array<ClipperLib::IntPoint, 3>>& triangles) {
   const std::size_t n = piece.size();
   if (n < 3) return;
-  std::vector<bool> corner(n);
-  for (std::size_t i = 0; i < n; ++i)
-    corner[i] = cross2(piece[(i + n - 1) % n], piece[i], piece[(i + 1) % n]) > 0.0;
-  // A fan from a corner whose two neighbours are corners too has no zero-area triangle: the only vertices
-  // collinear with the apex would lie on its two edges, and those edges have no intermediate vertices.
-  for (std::size_t a = 0; a < n; ++a) {
-    if (!corner[a] || !corner[(a + 1) % n] || !corner[(a + n - 1) % n]) continue;
-    for (std::size_t k = 1; k + 1 < n; ++k) {
-      const auto& b = piece[(a + k) % n];
-      const auto& c = piece[(a + k + 1) % n];
-      if (cross2(piece[a], b, c) > 0.0) triangles.push_back({piece[a], b, c});
-    }
-    return;
-  }
-  // Otherwise fan around the centre (inside, as the piece is convex).
+  // Every triangle must have positive area, so that no vertex is skipped (no T-junction with the piece next
+  // door); among such triangulations prefer the one without thin slivers, e.g. along a 3 mm strip of wall
+  // left above a door a fan from one corner would make needles 0.1 mm thick.
+  if (n <= kMaxOptimalVertices ? optimal(piece, triangles) : best_fan(piece, triangles)) return;
+  // No valid triangulation without an extra point (or the piece is not quite convex after rounding): fan
+  // around the centre, leaving out anything degenerate.
   long double sx = 0.0L, sy = 0.0L;
   for (const auto& p : piece) {
     sx += static_cast<long double>(p.X);

@@ -7,9 +7,9 @@
 
 namespace walk::compiler {
 
-// Appends counter-clockwise triangles; uses one extra centre point as the fan apex when every
-// corner has a collinear neighbour. Triangles of non-positive area (rounding in nearly flat pieces) are
-// left out.
+// Appends counter-clockwise triangles, none degenerate, using every vertex, with the thinnest triangle as
+// thick as possible. Falls back to a fan around one extra centre point when no such triangulation exists
+// (a piece left slightly non-convex by rounding); triangles of non-positive area are then left out.
 void fan_convex(const ClipperLib::Path& piece, std::vector<std::array<ClipperLib::IntPoint, 3>>& triangles);
 
 // Twice the signed area of triangle abc in Clipper units squared (exact for |coordinates| < 2^30).

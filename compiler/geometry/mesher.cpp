@@ -1,9 +1,9 @@
 // Triangulation by slabs. Why not ear clipping: Debian has no packaged C++ earcut, a hand-written ear clipper
 // needs its own care for holes (bridges), collinear and touching vertices, and we already depend on Clipper,
-// whose booleans are robust on exactly those cases. Cutting the polygon into horizontal slabs at every
-// vertex height leaves pieces that are convex (each is bounded by two edges that cross its slab and by the
-// two slab lines), and a convex piece is trivially fanned. The same cut also dices the mesh to a grid for
-// lighting resolution. Cost: more triangles than a minimal triangulation when cell_size <= 0.
+// whose booleans are robust on exactly those cases. Clipper cleans the outline and subtracts the holes;
+// horizontal lines through every vertex then leave a row of trapezoids per slab (trapezoids.hpp), merged
+// back into larger convex pieces where possible; a convex piece is trivially fanned. The same lines, plus
+// vertical ones, dice the mesh to a grid for lighting resolution.
 #include "compiler/geometry/mesher.hpp"
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 #include "compiler/geometry/clipper_convert.hpp"
 #include "compiler/geometry/convex_fan.hpp"
 #include "compiler/geometry/plane_frame.hpp"
+#include "compiler/geometry/trapezoids.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -26,110 +27,61 @@ using ClipperLib::Path;
 using ClipperLib::Paths;
 using Triangle2 = std::array<IntPoint, 3>;
 
-// Slab cuts closer than this (metres) are merged: vertex heights that differ by less than a millimetre
-// (print round-off, a window ending 1 mm short of its wall) would otherwise slice the whole polygon into
-// sub-millimetre slivers. A millimetre is below anything visible at walkthrough distances and below a
-// lighting cell by two orders of magnitude. Pieces that merging leaves non-convex are cut exactly instead.
-constexpr double kMinSlabHeight = 1e-3;
-
-constexpr cInt to_units(double metres) {
-  return static_cast<cInt>(metres * kClipperScale);
-}
-
-Paths clip(const Paths& subject, cInt x0, cInt y0, cInt x1, cInt y1) {
-  const Path box{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  ClipperLib::Clipper clipper;
-  clipper.PreserveCollinear(true);  // keep vertices where neighbouring pieces meet: no T-junctions
-  clipper.AddPaths(subject, ClipperLib::ptSubject, true);
-  clipper.AddPath(box, ClipperLib::ptClip, true);
-  Paths out;
-  clipper.Execute(ClipperLib::ctIntersection, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  return out;
-}
-
-// Sorted cut heights from `values`, merging those closer than `min_gap`, always keeping the first and last.
-std::vector<cInt> merged_cuts(std::vector<cInt> values, cInt min_gap) {
-  std::sort(values.begin(), values.end());
-  values.erase(std::unique(values.begin(), values.end()), values.end());
-  std::vector<cInt> cuts;
-  for (cInt y : values) {
-    if (cuts.empty() || y - cuts.back() >= min_gap) cuts.push_back(y);
-  }
-  if (!values.empty() && cuts.back() != values.back()) {
-    if (cuts.size() > 1 && values.back() - cuts.back() < min_gap)
-      cuts.back() = values.back();
-    else
-      cuts.push_back(values.back());
-  }
-  return cuts;
-}
-
 // Grid lines (multiples of `cell`) strictly between lo and hi.
 std::vector<cInt> grid_lines(cInt lo, cInt hi, cInt cell) {
   std::vector<cInt> out;
   if (cell <= 0) return out;
-  cInt k = lo / cell - 1;
-  for (cInt g = k * cell; g < hi; g += cell) {
+  const cInt first = (lo >= 0 ? lo / cell : -((-lo + cell - 1) / cell)) * cell;
+  for (cInt g = first; g < hi; g += cell) {
     if (g > lo) out.push_back(g);
   }
   return out;
 }
 
-struct Slabber {
-  Paths region;
-  std::vector<cInt> vertex_ys;  // every distinct vertex height, unmerged
-  cInt cell = 0;                // grid cell in Clipper units, 0 for none
-  std::vector<Triangle2> triangles;
-
-  // Splits the pieces of one slab into grid columns and fans them. Returns false when a piece is not convex
-  // (or a hole lies inside the slab), leaving `triangles` unchanged.
-  bool mesh_slab(cInt y0, cInt y1, bool exact) {
-    const cInt x0 = bounds_lo_x - 1, x1 = bounds_hi_x + 1;
-    Paths pieces = clip(region, x0, y0, x1, y1);
-    for (const auto& piece : pieces) {
-      if (!ClipperLib::Orientation(piece) || !is_convex(piece)) {
-        if (!exact) return false;
-      }
+// `lines` with each one closer than kMinGridGap to one of `vertex_coordinates` (sorted) moved onto it.
+std::vector<cInt> snapped(std::vector<cInt> lines, const std::vector<cInt>& vertex_coordinates) {
+  const cInt gap = std::llround(kMinGridGap * kClipperScale);
+  for (cInt& g : lines) {
+    const auto it = std::lower_bound(vertex_coordinates.begin(), vertex_coordinates.end(), g - gap);
+    if (it == vertex_coordinates.end() || *it >= g + gap) continue;
+    cInt nearest = *it;  // the closest within the gap
+    for (auto next = it + 1; next != vertex_coordinates.end() && *next < g + gap; ++next) {
+      if (std::llabs(*next - g) < std::llabs(nearest - g)) nearest = *next;
     }
-    std::vector<Triangle2> out;
-    for (const auto& piece : pieces) {
-      if (!ClipperLib::Orientation(piece)) continue;  // only possible when exact: a sub-unit hole, dropped
-      if (cell <= 0) {
-        fan_convex(piece, out);
-        continue;
-      }
-      cInt lo = piece[0].X, hi = piece[0].X;
-      for (const auto& p : piece) {
-        lo = std::min(lo, p.X);
-        hi = std::max(hi, p.X);
-      }
-      std::vector<cInt> xs = grid_lines(lo, hi, cell);
-      xs.insert(xs.begin(), lo);
-      xs.push_back(hi);
-      const Paths one{piece};
-      for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
-        for (const auto& column : clip(one, xs[i], y0, xs[i + 1], y1)) {
-          if (ClipperLib::Orientation(column)) fan_convex(column, out);
-        }
-      }
-    }
-    triangles.insert(triangles.end(), out.begin(), out.end());
-    return true;
+    g = nearest;
   }
+  std::sort(lines.begin(), lines.end());
+  lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
+  return lines;
+}
 
-  void mesh_between(cInt y0, cInt y1) {
-    if (mesh_slab(y0, y1, false)) return;
-    // Merging put a reflex vertex or a small hole inside this slab: cut at every vertex height in it.
-    std::vector<cInt> inner{y0, y1};
-    for (cInt y : vertex_ys) {
-      if (y > y0 && y < y1) inner.push_back(y);
-    }
-    std::sort(inner.begin(), inner.end());
-    for (std::size_t i = 0; i + 1 < inner.size(); ++i) mesh_slab(inner[i], inner[i + 1], true);
+// Where segment ab meets the vertical line x (a.X != b.X); computed from the segment's end points in a fixed
+// order, so the pieces on both sides of the line get the very same point.
+IntPoint at_x(IntPoint a, IntPoint b, cInt x) {
+  if (b.X < a.X || (b.X == a.X && b.Y < a.Y)) std::swap(a, b);
+  if (x == a.X) return a;
+  if (x == b.X) return b;
+  const long double t = static_cast<long double>(x - a.X) / static_cast<long double>(b.X - a.X);
+  return {
+      x, static_cast<cInt>(std::llround(static_cast<double>(a.Y + t * static_cast<long double>(b.Y - a.Y))))};
+}
+
+// The part of a convex piece with x >= limit (keep_right) or x <= limit (Sutherland-Hodgman, one line).
+Path clip_x(const Path& piece, cInt limit, bool keep_right) {
+  Path out;
+  const auto inside = [&](const IntPoint& p) { return keep_right ? p.X >= limit : p.X <= limit; };
+  auto add = [&](const IntPoint& q) {
+    if (out.empty() || !(out.back() == q)) out.push_back(q);
+  };
+  for (std::size_t i = 0; i < piece.size(); ++i) {
+    const IntPoint& a = piece[i];
+    const IntPoint& b = piece[(i + 1) % piece.size()];
+    if (inside(a)) add(a);
+    if (inside(a) != inside(b) && a.X != limit && b.X != limit) add(at_x(a, b, limit));
   }
-
-  cInt bounds_lo_x = 0, bounds_hi_x = 0;
-};
+  while (out.size() > 1 && out.back() == out.front()) out.pop_back();
+  return out;
+}
 
 }  // namespace
 
@@ -172,35 +124,48 @@ PolygonMesh mesh_polygon(const model::Polygon& polygon, double cell_size) {
     if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);
     clipper.AddPath(path, ClipperLib::ptClip, true);
   }
-  Slabber slabber;
-  clipper.Execute(ClipperLib::ctDifference, slabber.region, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  if (slabber.region.empty()) return mesh;
+  Paths region;
+  clipper.Execute(ClipperLib::ctDifference, region, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  if (region.empty()) return mesh;
 
-  cInt lo_y = slabber.region[0][0].Y, hi_y = lo_y;
-  slabber.bounds_lo_x = slabber.bounds_hi_x = slabber.region[0][0].X;
-  for (const auto& path : slabber.region) {
+  const cInt cell = cell_size > 0.0 ? std::max<cInt>(1, std::llround(cell_size * kClipperScale)) : 0;
+  std::vector<cInt> xs, ys;
+  for (const auto& path : region) {
     for (const auto& p : path) {
-      slabber.vertex_ys.push_back(p.Y);
-      lo_y = std::min(lo_y, p.Y);
-      hi_y = std::max(hi_y, p.Y);
-      slabber.bounds_lo_x = std::min(slabber.bounds_lo_x, p.X);
-      slabber.bounds_hi_x = std::max(slabber.bounds_hi_x, p.X);
+      xs.push_back(p.X);
+      ys.push_back(p.Y);
     }
   }
-  std::sort(slabber.vertex_ys.begin(), slabber.vertex_ys.end());
-  slabber.vertex_ys.erase(std::unique(slabber.vertex_ys.begin(), slabber.vertex_ys.end()),
-                          slabber.vertex_ys.end());
-  slabber.cell =
-      cell_size > 0.0 ? std::max<cInt>(1, static_cast<cInt>(std::llround(cell_size * kClipperScale))) : 0;
+  std::sort(xs.begin(), xs.end());
+  std::sort(ys.begin(), ys.end());
+  const std::vector<cInt> column_lines = snapped(grid_lines(xs.front(), xs.back(), cell), xs);
+  const Paths pieces = convex_pieces(region, snapped(grid_lines(ys.front(), ys.back(), cell), ys));
 
-  std::vector<cInt> cut_values = slabber.vertex_ys;
-  for (cInt g : grid_lines(lo_y, hi_y, slabber.cell)) cut_values.push_back(g);
-  const std::vector<cInt> cuts = merged_cuts(std::move(cut_values), to_units(kMinSlabHeight));
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) slabber.mesh_between(cuts[i], cuts[i + 1]);
+  std::vector<Triangle2> triangles;
+  for (const auto& piece : pieces) {
+    if (cell <= 0) {
+      fan_convex(piece, triangles);
+      continue;
+    }
+    cInt x0 = piece[0].X, x1 = x0;
+    for (const auto& p : piece) {
+      x0 = std::min(x0, p.X);
+      x1 = std::max(x1, p.X);
+    }
+    Path rest = piece;  // what is right of the columns cut so far
+    for (auto it = std::upper_bound(column_lines.begin(), column_lines.end(), x0);
+         it != column_lines.end() && *it < x1; ++it) {
+      const cInt g = *it;
+      const Path column = clip_x(rest, g, false);
+      if (column.size() >= 3) fan_convex(column, triangles);
+      rest = clip_x(rest, g, true);
+    }
+    if (rest.size() >= 3) fan_convex(rest, triangles);
+  }
 
   // Weld by exact integer position; map back to 3D on the plane (original vertices come back exactly).
   std::map<std::pair<cInt, cInt>, std::uint32_t> index_of;
-  for (const auto& triangle : slabber.triangles) {
+  for (const auto& triangle : triangles) {
     for (const auto& p : triangle) {
       const auto [it, added] =
           index_of.emplace(std::make_pair(p.X, p.Y), static_cast<std::uint32_t>(mesh.vertices.size()));

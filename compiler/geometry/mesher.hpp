@@ -15,6 +15,11 @@ struct PolygonMesh {
   model::Vec3 normal{0.0, 0.0, 1.0};
 };
 
+// Grid lines closer than this (metres) to a vertex of the polygon are moved onto the vertex, so that dicing
+// does not cut slivers next to edges that lie just off the grid (EnergyPlus prints 10 um steps). A
+// millimetre is far below any lighting cell; cells next to such an edge grow by at most this much.
+inline constexpr double kMinGridGap = 1e-3;
+
 // cell_size <= 0 means no dicing: the fewest triangles that cover the polygon.
 [[nodiscard]] PolygonMesh mesh_polygon(const model::Polygon& polygon, double cell_size);
 
