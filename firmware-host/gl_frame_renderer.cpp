@@ -1,4 +1,6 @@
 // Kept apart from the loop so code that never draws with GL (tests with a fake renderer) does not link GL.
+#include <glad/gl.h>
+
 #include "firmware-host/frame_renderer.hpp"
 #include "render/backend/backend.hpp"
 

@@ -1,0 +1,83 @@
+// End to end: compile the sample house with the real pipeline, then walk the demo traces through it with the
+// daemon (fake renderer: this checks the walk, not the pixels) and, when walkd is built, with the real
+// binary.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "compiler/pipeline.hpp"
+#include "fake_renderer.hpp"
+#include "firmware-host/daemon.hpp"
+
+namespace walk::kiosk {
+namespace {
+
+namespace fs = std::filesystem;
+
+class HouseWalkTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / "walk_house_walk";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    bundle_path_ = (dir_ / "house.walk").string();
+    compiler::compile_to_file(WALK_SOURCE_DIR "/config/scenes/house.toml", bundle_path_, true);
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  static inline fs::path dir_;
+  static inline std::string bundle_path_;
+};
+
+TEST_F(HouseWalkTest, DemoWalkPassesThroughTheDoorsIntoTheIntendedRooms) {
+  KioskConfig config = load_kiosk_config(WALK_SOURCE_DIR "/config/kiosk/demo.toml");
+  config.bundle = bundle_path_;
+  config.output.folder = (dir_ / "out").string();
+  const auto bundle = model::Bundle::open(config.bundle);
+  testing::FakeRenderer renderer;
+  Daemon daemon(config, *bundle, renderer, open_devices(config.devices));
+  std::atomic<bool> stop{false};
+  const Summary s = daemon.run(stop);
+
+  // Each room change is a pass through a door or the open passage; walls in between would stop the walker.
+  EXPECT_EQ(s.room_sequence, (std::vector<std::string>{"5642", "5627", "5642", "5634", "5642", "5618"}));
+  EXPECT_EQ(s.final_room, "5618");
+  EXPECT_NEAR(s.final_feet.z, 2.8, 1e-3);  // stayed on the first floor
+  EXPECT_GT(s.distance, 25.0);             // the whole plan was walked, not cut short by a jamb
+  // Never ends inside a wall: the body circle at the final position touches nothing solid.
+  const auto& nav = daemon.navigator();
+  EXPECT_EQ(nav.penetration(glm::dvec2(nav.feet()), nav.feet().z), 0.0);
+  // Every dimmer channel found its circuit and the sweep reached the renderer.
+  EXPECT_EQ(renderer.levels.size(), bundle->circuits().size());
+}
+
+TEST_F(HouseWalkTest, WalkdBinaryRunsTheDemoAndWritesFrames) {
+  const std::string walkd = WALK_BINARY_DIR "/firmware-host/walkd";
+  if (!fs::exists(walkd)) GTEST_SKIP() << "walkd not built";
+  const auto out = dir_ / "walkd-out";
+  const std::string command = walkd + " --config " WALK_SOURCE_DIR "/config/kiosk/demo.toml --bundle " +
+                              bundle_path_ + " --output " + out.string() + " --simulate 6 > " +
+                              (dir_ / "walkd.log").string() + " 2>&1";
+  const int rc = std::system(command.c_str());
+  std::ifstream log(dir_ / "walkd.log");
+  std::stringstream log_text;
+  log_text << log.rdbuf();
+  if (rc != 0 && log_text.str().find("backend") != std::string::npos &&
+      log_text.str().find("cannot") != std::string::npos)
+    GTEST_SKIP() << "no GL backend here: " << log_text.str();
+  ASSERT_EQ(rc, 0) << log_text.str();
+  std::ifstream in(out / "summary.json");
+  std::stringstream json;
+  json << in.rdbuf();
+  EXPECT_NE(json.str().find("\"frames\": 180"), std::string::npos) << json.str();
+  EXPECT_NE(json.str().find("\"rooms_visited\": [\"5642\", \"5627\"]"), std::string::npos) << json.str();
+  EXPECT_TRUE(fs::exists(out / "frame_000000.png"));
+  EXPECT_TRUE(fs::exists(out / "frame_000001.png"));  // t = 4 s
+  EXPECT_NE(log_text.str().find("room '5642' -> '5627'"), std::string::npos) << log_text.str();
+}
+
+}  // namespace
+}  // namespace walk::kiosk
