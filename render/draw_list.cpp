@@ -20,7 +20,7 @@ DrawList build_draw_list(std::span<const model::PolygonRecord> polygons,
   struct Range {
     std::uint64_t first, count;
   };
-  std::vector<Range> ranges;
+  std::vector<Range> opaque, glass;
   DrawList list;
   for (std::uint32_t id : ids) {
     if (id >= polygons.size()) continue;
@@ -28,22 +28,24 @@ DrawList build_draw_list(std::span<const model::PolygonRecord> polygons,
     if (!is_drawn(p.role) || p.index_count == 0) continue;
     ++list.polygons;
     list.triangles += p.index_count / 3;
-    ranges.push_back({p.first_index, p.index_count});
+    (p.role == std::uint32_t(model::Role::Glass) ? glass : opaque).push_back({p.first_index, p.index_count});
   }
   // Polygons are usually stored in id order, but nothing requires it: sort by index position before merging.
-  std::sort(ranges.begin(), ranges.end(), [](const Range& a, const Range& b) { return a.first < b.first; });
-  for (const Range& r : ranges) {
-    if (!list.counts.empty()) {
-      const std::uint64_t end =
-          list.byte_offsets.back() / sizeof(std::uint32_t) + std::uint64_t(list.counts.back());
-      if (end == r.first) {
-        list.counts.back() += std::int32_t(r.count);
-        continue;
+  auto merge = [](std::vector<Range>& ranges, DrawBatch& batch) {
+    std::sort(ranges.begin(), ranges.end(), [](const Range& a, const Range& b) { return a.first < b.first; });
+    std::uint64_t end = ~std::uint64_t(0);
+    for (const Range& r : ranges) {
+      if (!batch.counts.empty() && end == r.first) {
+        batch.counts.back() += std::int32_t(r.count);
+      } else {
+        batch.counts.push_back(std::int32_t(r.count));
+        batch.byte_offsets.push_back(std::uintptr_t(r.first * sizeof(std::uint32_t)));
       }
+      end = r.first + r.count;
     }
-    list.counts.push_back(std::int32_t(r.count));
-    list.byte_offsets.push_back(std::uintptr_t(r.first * sizeof(std::uint32_t)));
-  }
+  };
+  merge(opaque, list.opaque);
+  merge(glass, list.glass);
   return list;
 }
 

@@ -9,9 +9,17 @@
 
 namespace walk::render {
 
-struct DrawList {
+// Index ranges for one glMultiDrawElements call.
+struct DrawBatch {
   std::vector<std::int32_t> counts;          // indices per range
   std::vector<std::uintptr_t> byte_offsets;  // into the index buffer
+  [[nodiscard]] bool empty() const { return counts.empty(); }
+};
+
+// Glass is kept apart: it is drawn after everything opaque, blended, so rooms show through windows.
+struct DrawList {
+  DrawBatch opaque;
+  DrawBatch glass;
   std::uint32_t polygons = 0;
   std::uint32_t triangles = 0;
 };

@@ -23,13 +23,14 @@ struct Renderer::Impl {
   const model::Bundle& bundle;
   ShaderProgram program{"scene", kLightMixerVertexShader, kTonemapFragmentShader};
   GLint u_view_projection = -1, u_light = -1, u_circuit_count = -1, u_levels = -1, u_ambient = -1,
-        u_inv_exposure = -1;
+        u_inv_exposure = -1, u_opacity = -1;
   GLuint vao = 0, vbo = 0, ibo = 0, light_buffer = 0, light_texture = 0;
   Framebuffer framebuffer;
   std::vector<float> levels;
   std::vector<std::optional<DrawList>> cell_lists;  // built on first visit
   std::optional<DrawList> all_list;
   bool culling = true;
+  float glass_opacity = 0.25f;
   bool present_to_window = false;
   FrameStats stats;
 
@@ -81,6 +82,7 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   r.u_circuit_count = r.program.uniform("u_circuit_count");
   r.u_ambient = r.program.uniform("u_ambient");
   r.u_inv_exposure = r.program.uniform("u_inv_exposure");
+  r.u_opacity = r.program.uniform("u_opacity");
   // Unused (and so absent) when the shader has no circuits to loop over: not an error then.
   r.u_levels = glGetUniformLocation(r.program.id(), "u_levels[0]");
 
@@ -136,6 +138,12 @@ void Renderer::set_backface_culling(bool enabled) {
 void Renderer::set_present_to_window(bool enabled) {
   impl_->present_to_window = enabled;
 }
+void Renderer::set_glass_opacity(float opacity) {
+  impl_->glass_opacity = std::clamp(opacity, 0.0f, 1.0f);
+}
+float Renderer::glass_opacity() const {
+  return impl_->glass_opacity;
+}
 const FrameStats& Renderer::last_stats() const {
   return impl_->stats;
 }
@@ -169,7 +177,7 @@ void Renderer::draw(const View& view, int width, int height) {
     glDisable(GL_CULL_FACE);
   }
 
-  if (!list.counts.empty()) {
+  if (!list.opaque.empty() || !list.glass.empty()) {
     const auto& meta = r.bundle.meta();
     glUseProgram(r.program.id());
     glUniformMatrix4fv(r.u_view_projection, 1, GL_FALSE, &view_projection_matrix[0][0]);
@@ -182,9 +190,24 @@ void Renderer::draw(const View& view, int width, int height) {
     glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
     glUniform1i(r.u_light, 0);
     glBindVertexArray(r.vao);
-    glMultiDrawElements(GL_TRIANGLES, list.counts.data(), GL_UNSIGNED_INT,
-                        reinterpret_cast<const void* const*>(list.byte_offsets.data()),
-                        GLsizei(list.counts.size()));
+    auto draw_batch = [](const DrawBatch& batch) {
+      glMultiDrawElements(GL_TRIANGLES, batch.counts.data(), GL_UNSIGNED_INT,
+                          reinterpret_cast<const void* const*>(batch.byte_offsets.data()),
+                          GLsizei(batch.counts.size()));
+    };
+    glUniform1f(r.u_opacity, 1.0f);
+    if (!list.opaque.empty()) draw_batch(list.opaque);
+    if (!list.glass.empty()) {
+      // After everything opaque, depth-tested but not written, so glass behind glass still shows. Alpha
+      // keeps 1 in the frame so read_pixels stays opaque.
+      glUniform1f(r.u_opacity, r.glass_opacity);
+      glEnable(GL_BLEND);
+      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+      glDepthMask(GL_FALSE);
+      draw_batch(list.glass);
+      glDepthMask(GL_TRUE);
+      glDisable(GL_BLEND);
+    }
     glBindVertexArray(0);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     glUseProgram(0);
@@ -201,7 +224,7 @@ void Renderer::draw(const View& view, int width, int height) {
   r.stats.cell = cell;
   r.stats.polygons_drawn = list.polygons;
   r.stats.triangles_drawn = list.triangles;
-  r.stats.draw_ranges = std::uint32_t(list.counts.size());
+  r.stats.draw_ranges = std::uint32_t(list.opaque.counts.size() + list.glass.counts.size());
 }
 
 Image Renderer::read_pixels(int width, int height) const {

@@ -55,6 +55,10 @@ class Renderer {
   void set_backface_culling(bool enabled);
   // Blit each frame to the default framebuffer (a window); off by default. Use Backend::has_window().
   void set_present_to_window(bool enabled);
+  // Glass polygons are blended over what is behind them with this opacity (0..1, default 0.25), in display
+  // (sRGB) values: glass blocks walking, not seeing.
+  void set_glass_opacity(float opacity);
+  [[nodiscard]] float glass_opacity() const;
   void draw(const View& view, int width, int height);
   [[nodiscard]] Image read_pixels(int width, int height) const;
   [[nodiscard]] const FrameStats& last_stats() const;

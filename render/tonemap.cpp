@@ -5,6 +5,7 @@ namespace walk::render {
 const char* const kTonemapFragmentShader = R"glsl(#version 330 core
 in vec3 v_radiosity;
 uniform float u_inv_exposure;
+uniform float u_opacity;
 out vec4 o_colour;
 
 vec3 srgb_encode(vec3 c) {
@@ -14,7 +15,7 @@ vec3 srgb_encode(vec3 c) {
   return mix(low, high, step(vec3(0.0031308), c));
 }
 
-void main() { o_colour = vec4(srgb_encode(v_radiosity * u_inv_exposure), 1.0); }
+void main() { o_colour = vec4(srgb_encode(v_radiosity * u_inv_exposure), u_opacity); }
 )glsl";
 
 }  // namespace walk::render

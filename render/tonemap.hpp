@@ -4,7 +4,7 @@
 // reads back the same bytes.
 namespace walk::render {
 
-// Input: v_radiosity (linear W/m2); uniform u_inv_exposure.
+// Input: v_radiosity (linear W/m2); uniforms u_inv_exposure, u_opacity (1 except for glass).
 extern const char* const kTonemapFragmentShader;
 
 }  // namespace walk::render
