@@ -128,6 +128,25 @@ TEST_P(PixelTest, OnlyThePvsOfTheEyesCellIsDrawn) {
   expect_colour(centre(from_b), radiosity(scene_, true, scene_.wall_factor, 1, 1), scene_.exposure, "from B");
 }
 
+TEST_P(PixelTest, GlassIsBlendedOverTheRoomBehindIt) {
+  scene_.glass_door = true;
+  auto bundle = open_two_rooms(scene_, "glass");
+  Renderer renderer(*bundle);
+  renderer.set_glass_opacity(0.25f);
+  const Image image = render(*bundle, looking_along_x(+1.0), &renderer);
+  EXPECT_EQ(stats_.polygons_drawn, 17u);
+  EXPECT_EQ(stats_.draw_ranges, 3u);  // the glass door's indices sit between the rooms' two opaque ranges
+  const glm::dvec3 glass = radiosity(scene_, false, scene_.wall_factor, 1, 1);
+  const glm::dvec3 behind = radiosity(scene_, true, scene_.wall_factor, 1, 1);
+  for (int k = 0; k < 3; ++k) {
+    // Blended in display values: 0.25 * glass + 0.75 * what is behind.
+    const double expected =
+        0.25 * expected_byte(glass[k], scene_.exposure) + 0.75 * expected_byte(behind[k], scene_.exposure);
+    EXPECT_NEAR(centre(image)[k], expected, kTolerance + 0.5) << "channel " << k;
+  }
+  EXPECT_EQ(centre(image)[3], 255);
+}
+
 TEST_P(PixelTest, MoreThan64CircuitsIsAClearError) {
   scene_.circuits = 65;
   auto bundle = open_two_rooms(scene_, "circuits");

@@ -99,7 +99,8 @@ model::BundleContents make_two_rooms(const TwoRooms& scene) {
   b.room(0.0, false);
   const auto room_a_end = std::uint32_t(c.polygons.size());
   // The door itself: never drawn. Drawn, it would cover the view into B in the middle of the picture.
-  b.rect({4, 1.5, 0}, {0, 0, 2.2}, {0, 1, 0}, false, scene.wall_factor, model::Role::Opening);
+  b.rect({4, 1.5, 0}, {0, 0, 2.2}, {0, 1, 0}, false, scene.wall_factor,
+         scene.glass_door ? model::Role::Glass : model::Role::Opening);
   b.room(4.0, true);
   const auto total = std::uint32_t(c.polygons.size());
 

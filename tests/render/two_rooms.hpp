@@ -22,6 +22,7 @@ struct TwoRooms {
   double wall_factor = 0.8;
   float ambient = 8.0f;
   float exposure = 100.0f;
+  bool glass_door = false;    // true: the doorway holds a glass polygon instead of an opening
   bool cell_a_sees_b = true;  // false: room B's polygons are left out of cell A's PVS
   int subdivisions = 1;       // each rectangle as an n x n grid of quads
   int circuits = 2;           // more than 2: extra circuits with no light (for the limit test)

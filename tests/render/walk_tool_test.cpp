@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "model/bundle.hpp"
+
 namespace walk::render {
 namespace {
 
@@ -36,11 +38,22 @@ TEST(WalkTool, RendersACompiledHouse) {
   std::string output;
   ASSERT_EQ(run(kWalk + " compile " + WALK_SOURCE_DIR + "/config/scenes/house.toml -o " + bundle, output), 0)
       << output;
+  // Stand 1.2 m below the first ceiling luminaire, looking across and down into its lit room: the compiler
+  // may move the local origin, so the view comes from the bundle, not from fixed coordinates.
+  auto opened = model::Bundle::open(bundle);
+  ASSERT_FALSE(opened->luminaires().empty());
+  const float* lamp = opened->luminaires()[0].position;
+  auto triple = [](double x, double y, double z) {
+    std::ostringstream text;
+    text << x << ',' << y << ',' << z;
+    return text.str();
+  };
+  const std::string eye = triple(lamp[0], lamp[1], lamp[2] - 1.2);
+  const std::string look = triple(lamp[0] + 2.0, lamp[1] + 0.7, lamp[2] - 2.2);
   for (const char* backend : {"egl", "osmesa"}) {
     const std::string png = (dir / (std::string(backend) + ".png")).string();
-    // Ground floor, 1.6 m above it, looking across the room: see `walk inspect` for the bounds.
-    ASSERT_EQ(run(kWalk + " render " + bundle + " --eye 3,0,-4.4 --look 8,1,-4.6 --size 320x180 --backend " +
-                      backend + " -o " + png,
+    ASSERT_EQ(run(kWalk + " render " + bundle + " --eye " + eye + " --look " + look +
+                      " --size 320x180 --backend " + backend + " -o " + png,
                   output),
               0)
         << output;
@@ -60,7 +73,9 @@ TEST(WalkTool, RendersACompiledHouse) {
     EXPECT_LT(black, rgba.size() / 4 / 4) << backend << ": " << black << " black pixels";
   }
   // A bad backend name is refused with the accepted values.
-  EXPECT_NE(run(kWalk + " render " + bundle + " --eye 3,0,-4.4 --look 8,1,-4.6 --backend vulkan", output), 0);
+  EXPECT_NE(
+      run(kWalk + " render " + bundle + " --eye " + eye + " --look " + look + " --backend vulkan", output),
+      0);
   EXPECT_NE(output.find("auto, osmesa, egl, glfw"), std::string::npos) << output;
   fs::remove_all(dir);
 }
