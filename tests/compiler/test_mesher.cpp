@@ -114,7 +114,9 @@ TEST(Mesher, LShapeWithHoleCoversExactly) {
     EXPECT_GT(c.min_area, 1e-8) << cell;
     // Shared vertices and no T-junctions: only the outline is left without twin edges.
     EXPECT_NEAR(c.open_edge_length, outline_length(p), 1e-6) << cell;
-    if (cell > 0.0) EXPECT_LE(c.max_edge, (cell + kMinGridGap) * std::sqrt(2.0)) << cell;
+    if (cell > 0.0) {
+      EXPECT_LE(c.max_edge, (cell + kMinGridGap) * std::sqrt(2.0)) << cell;
+    }
   }
 }
 

@@ -101,7 +101,9 @@ TEST(Openings, HouseDoorsHolesAndWindowsAreCut) {
   for (const Polygon* c : distinct) {
     const std::size_t hosts = host_count(m, *c);
     if (hosts == 0) hostless.push_back(c->name);
-    if (c->role == Role::Glass) EXPECT_EQ(hosts, 1u) << c->name;  // all windows are in exterior walls/roof
+    if (c->role == Role::Glass) {
+      EXPECT_EQ(hosts, 1u) << c->name;  // all windows are in exterior walls or the roof
+    }
     expected_cut += polygon_area(*c) * static_cast<double>(hosts);
   }
   EXPECT_TRUE(hostless.empty()) << hostless.size() << " without host, e.g. " << hostless.front();
@@ -133,8 +135,9 @@ TEST(Openings, HouseDoorsHolesAndWindowsAreCut) {
   for (const auto& door : doors) {
     const Vec3 middle = centroid(door.vertices);
     for (const auto& p : m.polygons) {
-      if (p.role == Role::Opaque)
+      if (p.role == Role::Opaque) {
         EXPECT_FALSE(inside_polygon(p, middle, 0.002)) << door.name << " in " << p.name;
+      }
     }
     // A point on the wall just beside the door (left or right of it, at mid height) is still wall.
     const Vec3 up{0.0, 0.0, 1.0};
