@@ -93,6 +93,11 @@ model::Model read_dxf(const std::string& path, const DxfOptions& options) {
 }
 
 model::Model read_dxf(const std::string& path, const DxfOptions& options, DxfStats* stats_out) {
+  if (!(options.unit_scale > 0.0) || !std::isfinite(options.unit_scale)) {
+    throw Error(
+        located(path, 0, "unit scale " + std::to_string(options.unit_scale) + " is not a positive number",
+                "set the scene's unit scale to the metres per drawing unit, e.g. 0.001 for millimetres"));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw Error(located(path, 0, "cannot open the DXF file",
@@ -173,6 +178,9 @@ model::Model read_dxf(const std::string& path, const DxfOptions& options, DxfSta
     }
   }
   stats.lines = tokens.lines_read();
+  if (stats.lines == 0) {
+    throw Error(located(path, 0, "the DXF file is empty", "copy or export the file again"));
+  }
   if (!saw_eof) {
     const std::string inside =
         entity_type.empty() ? std::string()

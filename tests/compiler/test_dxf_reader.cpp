@@ -138,6 +138,41 @@ TEST(DxfReader, SmallFixtureFacesTrianglesAndDegenerates) {
   EXPECT_EQ(m.polygons[1].source_line, 53u);
 }
 
+TEST(DxfReader, WindowsLineEndingsReadTheSame) {
+  const model::Model unix_lines = read_dxf(kData + "small.dxf");
+  const model::Model crlf = read_dxf(kData + "small_crlf.dxf");
+  ASSERT_EQ(crlf.polygons.size(), unix_lines.polygons.size());
+  for (std::size_t i = 0; i < crlf.polygons.size(); ++i) {
+    EXPECT_EQ(crlf.polygons[i].vertices, unix_lines.polygons[i].vertices);
+    EXPECT_EQ(crlf.polygons[i].name, unix_lines.polygons[i].name);
+    EXPECT_EQ(crlf.groups[crlf.polygons[i].group], unix_lines.groups[unix_lines.polygons[i].group]);
+  }
+}
+
+TEST(DxfReader, TriangulatedSurfacesKeepTheirName) {
+  // EnergyPlus writes one 999 comment before the first triangle of a TRIANGULATE3DFACE'd surface only.
+  const model::Model m = read_dxf(kHouse);
+  for (const auto& p : m.polygons) {
+    if (m.groups[p.group] == "1") continue;
+    EXPECT_NE(p.name.find(':'), std::string::npos) << "line " << p.source_line << ": " << p.name;
+    EXPECT_EQ(p.name.substr(0, p.name.find(':')), m.groups[p.group]) << "line " << p.source_line;
+  }
+}
+
+TEST(DxfReader, BadUnitScaleIsAnError) {
+  try {
+    (void)read_dxf(kData + "small.dxf", DxfOptions{0.0});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unit scale"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DxfReader, EmptyFileIsAnError) {
+  const std::string message = error_of(kData + "empty_file.dxf");
+  EXPECT_NE(message.find("empty_file.dxf: the DXF file is empty"), std::string::npos) << message;
+}
+
 TEST(DxfReader, MissingFileNamesIt) {
   const std::string message = error_of(kData + "no_such_file.dxf");
   EXPECT_NE(message.find("no_such_file.dxf"), std::string::npos) << message;
