@@ -42,10 +42,6 @@ void make_positive(Path& path) {
   if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);
 }
 
-}  // namespace
-
-namespace {
-
 // An opaque face that may receive cut-outs, in its own plane's frame.
 struct Host {
   std::size_t index = 0;
