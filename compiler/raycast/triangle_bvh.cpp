@@ -84,25 +84,47 @@ std::uint32_t TriangleBvh::build(std::uint32_t first, std::uint32_t count, int d
   return index;
 }
 
-template <bool kAnyHit>
+namespace {
+// Facing: the ray meets the triangle's front (counter-clockwise) side.
+bool faces(const Triangle& t, const model::Vec3& dir) {
+  return glm::dot(glm::cross(t.b - t.a, t.c - t.a), dir) < 0.0;
+}
+}  // namespace
+
+template <TriangleBvh::Query kQuery>
 std::optional<Hit> TriangleBvh::traverse(const model::Vec3& origin, const model::Vec3& dir, double t_min,
-                                         double t_max) const {
+                                         double t_max, double tie) const {
   if (nodes_.empty()) return std::nullopt;
   const model::Vec3 inv(1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z);
   std::optional<Hit> best;
+  bool best_faces = false;
+  double limit = t_max;  // nodes beyond this cannot hold a better hit
   std::uint32_t stack[2 * kMaxDepth + 4];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (!slab_hit(n.lo, n.hi, origin, inv, t_min, t_max)) continue;
+    if (!slab_hit(n.lo, n.hi, origin, inv, t_min, limit)) continue;
     if (n.count > 0) {
       for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
         const auto t = intersect_triangle(triangles_[i], origin, dir);
-        if (t && *t > t_min && *t < t_max) {
-          best = Hit{*t, i};
-          if constexpr (kAnyHit) return best;
-          t_max = *t;
+        if (!t || *t <= t_min || *t >= t_max) continue;
+        if constexpr (kQuery == Query::kAny) return Hit{*t, i};
+        if constexpr (kQuery == Query::kClosest) {
+          if (!best || *t < best->t) {
+            best = Hit{*t, i};
+            limit = *t;
+          }
+        } else {
+          const bool f = faces(triangles_[i], dir);
+          const bool better =
+              !best || (*t < best->t - tie) ||
+              (std::abs(*t - best->t) <= tie && ((f && !best_faces) || (f == best_faces && *t < best->t)));
+          if (better) {
+            best = Hit{*t, i};
+            best_faces = f;
+            limit = std::min(t_max, *t + tie);
+          }
         }
       }
     } else {
@@ -116,12 +138,17 @@ std::optional<Hit> TriangleBvh::traverse(const model::Vec3& origin, const model:
 
 std::optional<Hit> TriangleBvh::closest(const model::Vec3& origin, const model::Vec3& dir, double t_min,
                                         double t_max) const {
-  return traverse<false>(origin, dir, t_min, t_max);
+  return traverse<Query::kClosest>(origin, dir, t_min, t_max);
+}
+
+std::optional<Hit> TriangleBvh::closest_facing(const model::Vec3& origin, const model::Vec3& dir,
+                                               double t_min, double t_max, double tie) const {
+  return traverse<Query::kClosestFacing>(origin, dir, t_min, t_max, tie);
 }
 
 bool TriangleBvh::occluded(const model::Vec3& origin, const model::Vec3& dir, double t_min,
                            double t_max) const {
-  return traverse<true>(origin, dir, t_min, t_max).has_value();
+  return traverse<Query::kAny>(origin, dir, t_min, t_max).has_value();
 }
 
 }  // namespace walk::compiler

@@ -26,6 +26,11 @@ class TriangleBvh {
   // Closest hit with t in (t_min, t_max); dir need not be unit length (t is in units of dir).
   [[nodiscard]] std::optional<Hit> closest(const model::Vec3& origin, const model::Vec3& dir, double t_min,
                                            double t_max) const;
+  // Closest hit, but among hits within `tie` of each other the one facing the ray (dot(dir, normal) < 0)
+  // wins. Buildings drawn per room hold every shared wall twice, back to back with opposite normals; this
+  // makes a ray from either room land on its own room's copy.
+  [[nodiscard]] std::optional<Hit> closest_facing(const model::Vec3& origin, const model::Vec3& dir,
+                                                  double t_min, double t_max, double tie) const;
   // Any hit with t in (t_min, t_max): the occlusion query of shadow rays.
   [[nodiscard]] bool occluded(const model::Vec3& origin, const model::Vec3& dir, double t_min,
                               double t_max) const;
@@ -39,9 +44,10 @@ class TriangleBvh {
     std::uint32_t count = 0;  // triangles in a leaf, 0 for an inner node
   };
   std::uint32_t build(std::uint32_t first, std::uint32_t count, int depth);
-  template <bool kAnyHit>
-  std::optional<Hit> traverse(const model::Vec3& origin, const model::Vec3& dir, double t_min,
-                              double t_max) const;
+  enum class Query { kClosest, kAny, kClosestFacing };
+  template <Query kQuery>
+  std::optional<Hit> traverse(const model::Vec3& origin, const model::Vec3& dir, double t_min, double t_max,
+                              double tie = 0.0) const;
 
   std::vector<Triangle> triangles_;
   std::vector<Node> nodes_;

@@ -1,0 +1,248 @@
+#include "compiler/radiosity/progressive_solver.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <thread>
+
+#include "compiler/radiosity/sampling.hpp"
+#include "compiler/raycast/triangle_bvh.hpp"
+
+namespace walk::compiler {
+namespace {
+
+// Rays start this far off their patch along its normal (metres): far above double round-off at building
+// scale, far below any real gap, so a ray never re-hits its own patch or a coincident back-to-back wall.
+constexpr double kRayOffset = 1e-6;
+// Hits within this distance of each other (metres) count as a tie resolved in favour of the face looking back
+// at the ray: back-to-back walls drawn once per room are exactly coincident.
+constexpr double kTieDistance = 1e-6;
+constexpr std::int32_t kEscaped = -1;
+constexpr std::int32_t kBackFace = -2;
+constexpr std::uint32_t kChunkRays = 4096;
+
+struct Shot {
+  std::uint32_t patch = 0;  // source patch, or point emitter index when `point`
+  bool point = false;
+  std::uint32_t rays = 0;
+  std::uint64_t first_ray = 0;        // index of its first ray in the round
+  std::vector<double> power_per_ray;  // K = circuits * 3
+};
+
+double scalar_power(const double* v, std::size_t k) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < k; ++i) s += v[i];
+  return s / 3.0;
+}
+
+// Direction for ray `index` of `count` from a point light with intensity ~ cos^n inside a cone: cos(theta)
+// is drawn from that distribution itself (inverse CDF), so every ray carries the same power and the shot
+// conserves energy exactly. Stratified over (cos theta, phi) for the first side^2 rays.
+model::Vec3 point_direction(const PointEmitter& e, std::uint32_t index, std::uint32_t count, SplitMix& rng) {
+  const auto side = static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(double(count)))));
+  double u1 = rng.uniform(), u2 = rng.uniform();
+  if (index < side * side) {
+    u1 = ((index % side) + u1) / side;
+    u2 = ((index / side) + u2) / side;
+  }
+  const double cos_min = std::cos(std::min(e.cone, std::numbers::pi));
+  double cos_theta;
+  if (e.exponent > 0.0) {  // pdf ~ cos^n on [max(cos_min, 0), 1]: nothing leaves behind the spot's plane
+    const double n1 = e.exponent + 1.0;
+    const double lo = std::pow(std::max(cos_min, 0.0), n1);
+    cos_theta = std::pow(lo + u1 * (1.0 - lo), 1.0 / n1);
+  } else {
+    cos_theta = 1.0 - u1 * (1.0 - cos_min);  // uniform in solid angle over the cone
+  }
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  const double phi = 2.0 * std::numbers::pi * u2;
+  const model::Vec3 axis = glm::normalize(e.axis);
+  const model::Vec3 t = perpendicular(axis);
+  const model::Vec3 b = glm::cross(axis, t);
+  return t * (sin_theta * std::cos(phi)) + b * (sin_theta * std::sin(phi)) + axis * cos_theta;
+}
+
+}  // namespace
+
+RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter> area,
+                                std::span<const PointEmitter> points, std::size_t circuits,
+                                const RadiosityOptions& options, const RoundObserver& observer) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t K = circuits * 3;
+  const std::size_t P = set.patches.size();
+  RadiosityResult result;
+  result.circuits = circuits;
+  result.radiosity.assign(P * K, 0.0);
+  auto& stats = result.stats;
+  if (K == 0 || P == 0) return result;
+
+  std::vector<Triangle> triangles;
+  triangles.reserve(P);
+  for (std::uint32_t i = 0; i < P; ++i) {
+    const auto& p = set.patches[i];
+    triangles.push_back({set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]], i});
+  }
+  const TriangleBvh bvh(std::move(triangles));
+
+  std::vector<double> unshot(P * K, 0.0);
+  for (const auto& e : area) {
+    const auto& p = set.patches[e.patch];
+    for (int c = 0; c < 3; ++c) {
+      result.radiosity[e.patch * K + e.circuit * 3 + c] += e.exitance[c];
+      unshot[e.patch * K + e.circuit * 3 + c] += e.exitance[c] * p.area;
+      stats.emitted += e.exitance[c] * p.area / 3.0;
+    }
+  }
+  for (const auto& e : points) stats.emitted += (e.power.r + e.power.g + e.power.b) / 3.0;
+
+  std::vector<Shot> shots;
+  std::vector<std::int32_t> hits;
+  std::vector<double> patch_scalar(P);
+  const unsigned threads = std::max(1u, options.threads);
+
+  auto cast_round = [&](std::uint64_t round) {
+    std::uint64_t total = 0;
+    for (auto& s : shots) {
+      s.first_ray = total;
+      total += s.rays;
+    }
+    hits.assign(total, kEscaped);
+    // Work items are chunks of one shot's rays, seeded per chunk: balanced across threads for one huge shot
+    // or many small ones, and the same rays whatever the thread count.
+    struct Chunk {
+      std::uint32_t shot, begin, end;
+    };
+    std::vector<Chunk> chunks;
+    for (std::uint32_t si = 0; si < shots.size(); ++si)
+      for (std::uint32_t b = 0; b < shots[si].rays; b += kChunkRays)
+        chunks.push_back({si, b, std::min(shots[si].rays, b + kChunkRays)});
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t ci; (ci = next.fetch_add(1)) < chunks.size();) {
+        const Chunk& chunk = chunks[ci];
+        const Shot& s = shots[chunk.shot];
+        const std::uint64_t source = (s.point ? 1ull << 40 : 0) + s.patch;
+        SplitMix rng(mix_seed(mix_seed(options.seed, round), source << 20 | chunk.begin / kChunkRays));
+        const auto side = static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(double(s.rays)))));
+        for (std::uint32_t r = chunk.begin; r < chunk.end; ++r) {
+          model::Vec3 origin, dir;
+          if (s.point) {
+            const PointEmitter& e = points[s.patch];
+            origin = e.position;
+            dir = point_direction(e, r, s.rays, rng);
+          } else {
+            const Patch& p = set.patches[s.patch];
+            const model::Vec3 o = triangle_point(set.vertices[p.v[0]], set.vertices[p.v[1]],
+                                                 set.vertices[p.v[2]], rng.uniform(), rng.uniform());
+            origin = o + p.normal * kRayOffset;
+            // Jittered strata over the cosine-warped square for the first side^2 rays; the rest are plain
+            // random (re-using strata for them would favour one side of the hemisphere).
+            double u1 = rng.uniform(), u2 = rng.uniform();
+            if (r < side * side) {
+              u1 = ((r % side) + u1) / side;
+              u2 = ((r / side) + u2) / side;
+            }
+            dir = cosine_direction(p.normal, u1, u2);
+          }
+          const auto hit = bvh.closest_facing(origin, dir, 0.0, INFINITY, kTieDistance);
+          std::int32_t out = kEscaped;
+          if (hit) {
+            const Triangle& tri = bvh.triangles()[hit->triangle];
+            out = glm::dot(set.patches[tri.polygon].normal, dir) < 0.0
+                      ? static_cast<std::int32_t>(tri.polygon)
+                      : kBackFace;
+          }
+          hits[s.first_ray + r] = out;
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& th : pool) th.join();
+    stats.rays += total;
+  };
+
+  auto deposit = [&](const Shot& s) {
+    for (std::uint32_t r = 0; r < s.rays; ++r) {
+      const std::int32_t h = hits[s.first_ray + r];
+      if (h < 0) {
+        const double lost = scalar_power(s.power_per_ray.data(), K);
+        (h == kEscaped ? stats.escaped : stats.back_face) += lost;
+        continue;
+      }
+      const Patch& p = set.patches[static_cast<std::size_t>(h)];
+      double* b = &result.radiosity[std::size_t(h) * K];
+      double* u = &unshot[std::size_t(h) * K];
+      for (std::size_t k = 0; k < K; ++k) {
+        const double in = s.power_per_ray[k];
+        const double reflected = in * p.reflectance[k % 3];
+        b[k] += reflected / p.area;
+        u[k] += reflected;
+        stats.absorbed += (in - reflected) / 3.0;
+      }
+    }
+  };
+
+  // Point and spot luminaires shoot once, first: they are not patches and receive nothing.
+  if (!points.empty()) {
+    shots.clear();
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+      const auto& e = points[i];
+      const double power = (e.power.r + e.power.g + e.power.b) / 3.0;
+      Shot s{i,
+             true,
+             static_cast<std::uint32_t>(std::max(1.0, std::round(power * options.rays_per_watt))),
+             0,
+             {}};
+      s.power_per_ray.assign(K, 0.0);
+      for (int c = 0; c < 3; ++c) s.power_per_ray[e.circuit * 3 + c] = e.power[c] / s.rays;
+      shots.push_back(std::move(s));
+    }
+    cast_round(0);
+    for (const auto& s : shots) deposit(s);
+    ++stats.rounds;
+  }
+
+  const double stop = options.residual * stats.emitted;
+  for (std::uint64_t round = 1;; ++round) {
+    double total_unshot = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < P; ++i) {
+      patch_scalar[i] = scalar_power(&unshot[i * K], K);
+      total_unshot += patch_scalar[i];
+      largest = std::max(largest, patch_scalar[i]);
+    }
+    stats.unshot = total_unshot;
+    if (total_unshot <= stop || largest <= 0.0 || stats.rays >= options.max_rays) break;
+    shots.clear();
+    const double threshold = largest * options.batch_fraction;
+    for (std::uint32_t i = 0; i < P; ++i) {
+      if (patch_scalar[i] < threshold || patch_scalar[i] <= 0.0) continue;
+      // Power per ray stays constant: rays proportional to the unshot power, at least one.
+      Shot s{i,
+             false,
+             static_cast<std::uint32_t>(
+                 std::clamp(std::round(patch_scalar[i] * options.rays_per_watt), 1.0, 4.0e9)),
+             0,
+             {}};
+      s.power_per_ray.resize(K);
+      for (std::size_t k = 0; k < K; ++k) {
+        s.power_per_ray[k] = unshot[i * K + k] / s.rays;
+        unshot[i * K + k] = 0.0;
+      }
+      shots.push_back(std::move(s));
+    }
+    stats.shots += shots.size();
+    cast_round(round);
+    for (const auto& s : shots) deposit(s);
+    ++stats.rounds;
+    if (observer) observer(result);
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace walk::compiler

@@ -1,0 +1,75 @@
+#pragma once
+// Progressive refinement radiosity (Cohen, Chen, Wallace & Greenberg 1988) by ray casting, with one
+// radiosity vector per light circuit: every shot carries the unshot power of all circuits along the same
+// rays, so any dimmer mix is a linear combination at display time.
+//
+// Each round shoots every patch whose unshot power is within `batch_fraction` of the largest (the paper's
+// "patch with the most unshot power", relaxed so a round's rays can be cast in parallel; the converged answer
+// does not depend on the order of shots). Rays per shot are proportional to the unshot power so that power
+// per ray stays constant; directions are jittered (stratified) and cosine-distributed, origins uniform on the
+// patch.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "compiler/radiosity/patch_set.hpp"
+
+namespace walk::compiler {
+
+// A diffuse area luminaire: a patch that emits `exitance` (W/m2 per channel) on `circuit`.
+struct AreaEmitter {
+  std::uint32_t patch = 0;
+  std::uint32_t circuit = 0;
+  model::Rgb exitance{0.0};
+};
+
+// A point or spot luminaire: power leaves `position` with intensity proportional to cos^exponent of the angle
+// to `axis`, inside a cone of half-angle `cone` (pi: an isotropic point light).
+struct PointEmitter {
+  model::Vec3 position{0.0};
+  model::Vec3 axis{0.0, 0.0, -1.0};
+  double cone = 3.141592653589793;
+  double exponent = 0.0;
+  model::Rgb power{0.0};
+  std::uint32_t circuit = 0;
+};
+
+struct RadiosityOptions {
+  double rays_per_watt = 2000.0;  // accuracy knob: rays shot per watt of unshot power
+  double residual = 0.01;         // stop when unshot power < residual * emitted power
+  double batch_fraction = 0.5;    // shoot every patch with at least this fraction of the largest unshot power
+  unsigned threads = 2;
+  std::uint64_t seed = 1;
+  std::uint64_t max_rays = 2'000'000'000;  // safety stop
+};
+
+struct RadiosityStats {
+  std::uint64_t rays = 0;
+  std::uint64_t shots = 0;
+  std::uint64_t rounds = 0;
+  // Energy bookkeeping (watts, summed over circuits and channels / 3): emitted = absorbed + escaped +
+  // back_face + unshot, up to floating-point rounding.
+  double emitted = 0.0;
+  double absorbed = 0.0;
+  double escaped = 0.0;    // rays that left the model (open windows, holes to the outside)
+  double back_face = 0.0;  // rays that hit the back of a one-sided surface (inside a wall): absorbed there
+  double unshot = 0.0;
+  double seconds = 0.0;
+};
+
+struct RadiosityResult {
+  std::size_t circuits = 0;
+  std::vector<double> radiosity;  // W/m2, [patch][circuit][channel]
+  RadiosityStats stats;
+};
+
+// Called after every round with the result so far (for convergence studies); may be empty.
+using RoundObserver = std::function<void(const RadiosityResult&)>;
+
+[[nodiscard]] RadiosityResult solve_radiosity(const PatchSet& patches, std::span<const AreaEmitter> area,
+                                              std::span<const PointEmitter> points, std::size_t circuits,
+                                              const RadiosityOptions& options,
+                                              const RoundObserver& observer = {});
+
+}  // namespace walk::compiler

@@ -1,0 +1,238 @@
+// Progressive radiosity: analytic cases, energy balance and the hard cases that break naive solvers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "compiler/geometry/mesher.hpp"
+#include "compiler/radiosity/progressive_solver.hpp"
+
+namespace walk::compiler {
+namespace {
+
+using model::Vec3;
+
+// Adds a planar quad (counter-clockwise about the normal it should have), diced at `grid` (0: two triangles).
+// Returns the range of patches it produced.
+std::pair<std::uint32_t, std::uint32_t> add_quad(PatchSet& set, const std::vector<Vec3>& corners, double rho,
+                                                 double grid, std::uint32_t polygon = 0) {
+  model::Polygon poly;
+  poly.vertices = corners;
+  const PolygonMesh mesh = mesh_polygon(poly, grid);
+  const auto base = static_cast<std::uint32_t>(set.vertices.size());
+  set.vertices.insert(set.vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+  const auto first = static_cast<std::uint32_t>(set.patches.size());
+  for (std::size_t i = 0; i + 2 < mesh.triangles.size(); i += 3)
+    set.add(base + mesh.triangles[i], base + mesh.triangles[i + 1], base + mesh.triangles[i + 2],
+            model::Rgb(rho), polygon);
+  return {first, static_cast<std::uint32_t>(set.patches.size())};
+}
+
+// The six inward-facing faces of the box [lo, hi]; face order: -z floor, +z ceiling, -x, +x, -y, +y.
+void add_box(PatchSet& set, Vec3 lo, Vec3 hi, double rho, double grid, bool with_ceiling = true) {
+  const double x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
+  add_quad(set, {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}}, rho, grid, 0);  // floor, normal +z
+  if (with_ceiling) add_quad(set, {{x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1}}, rho, grid, 1);
+  add_quad(set, {{x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}}, rho, grid,
+           2);  // x0 wall, normal +x
+  add_quad(set, {{x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}}, rho, grid,
+           3);  // x1 wall, normal -x
+  add_quad(set, {{x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}}, rho, grid,
+           4);  // y0 wall, normal +y
+  add_quad(set, {{x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}}, rho, grid,
+           5);  // y1 wall, normal -y
+}
+
+double area_mean(const PatchSet& set, const RadiosityResult& r, std::size_t channel = 0) {
+  double ab = 0.0, a = 0.0;
+  for (std::size_t i = 0; i < set.patches.size(); ++i) {
+    ab += set.patches[i].area * r.radiosity[i * r.circuits * 3 + channel];
+    a += set.patches[i].area;
+  }
+  return ab / a;
+}
+
+void expect_energy_balance(const RadiosityStats& s) {
+  const double accounted = s.absorbed + s.escaped + s.back_face + s.unshot;
+  EXPECT_NEAR(accounted, s.emitted, 1e-9 * s.emitted) << "absorbed " << s.absorbed << " escaped " << s.escaped
+                                                      << " back " << s.back_face << " unshot " << s.unshot;
+}
+
+void expect_finite_non_negative(const RadiosityResult& r) {
+  for (double b : r.radiosity) ASSERT_TRUE(std::isfinite(b) && b >= 0.0) << b;
+}
+
+std::vector<AreaEmitter> everything_emits(const PatchSet& set, double e) {
+  std::vector<AreaEmitter> out;
+  for (std::uint32_t i = 0; i < set.patches.size(); ++i) out.push_back({i, 0, model::Rgb(e)});
+  return out;
+}
+
+TEST(Radiosity, WhiteFurnaceConvergesToClosedForm) {
+  PatchSet set;
+  add_box(set, Vec3(0), Vec3(1), 0.9, 0.5);
+  RadiosityOptions o;
+  o.rays_per_watt = 20000;
+  o.residual = 1e-3;
+  const auto r = solve_radiosity(set, everything_emits(set, 1.0), {}, 1, o);
+  const double expected = 1.0 / (1.0 - 0.9);
+  // Energy conservation makes the area mean exact up to the residual (rho * residual = 0.09%).
+  EXPECT_NEAR(area_mean(set, r), expected, 0.01 * expected);
+  // Each patch receives ~25k rays: Monte Carlo noise ~0.6%; 4 sigma.
+  for (std::size_t i = 0; i < set.patches.size(); ++i)
+    EXPECT_NEAR(r.radiosity[i * 3], expected, 0.025 * expected);
+  EXPECT_EQ(r.stats.escaped, 0.0);
+  EXPECT_EQ(r.stats.back_face, 0.0);
+  expect_energy_balance(r.stats);
+}
+
+TEST(Radiosity, NearlyWhiteFurnaceStaysFiniteAndMonotone) {
+  PatchSet set;
+  add_box(set, Vec3(0), Vec3(1), 0.99, 0.5);
+  RadiosityOptions o;
+  o.rays_per_watt = 1000;
+  o.residual = 0.05;
+  std::vector<double> means;
+  const auto r =
+      solve_radiosity(set, everything_emits(set, 1.0), {}, 1, o,
+                      [&](const RadiosityResult& partial) { means.push_back(area_mean(set, partial)); });
+  ASSERT_GT(means.size(), 10u);
+  for (std::size_t i = 1; i < means.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(means[i]));
+    EXPECT_GE(means[i], means[i - 1]);
+  }
+  // Unshot 5% of emitted remains: B falls short of E/(1-rho) = 100 by at most rho * residual / (1 - rho).
+  EXPECT_GT(means.back(), 100.0 * (1.0 - 0.99 * 0.05 / 0.01) - 1.0);
+  EXPECT_LE(means.back(), 100.0 * 1.01);
+  expect_finite_non_negative(r);
+  expect_energy_balance(r.stats);
+}
+
+TEST(Radiosity, ParallelUnitSquaresMatchAnalyticFormFactor) {
+  PatchSet set;
+  // Emitter at z = 0 facing up (absorbs everything), receiver at z = 1 facing down (reflects everything).
+  add_quad(set, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, 0.0, 0.0, 0);
+  const auto receiver = add_quad(set, {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}}, 1.0, 0.0, 1);
+  std::vector<AreaEmitter> emit;
+  for (std::uint32_t i = 0; i < receiver.first; ++i) emit.push_back({i, 0, model::Rgb(1.0)});
+  RadiosityOptions o;
+  o.rays_per_watt = 2e6;
+  o.residual = 1e-6;
+  const auto r = solve_radiosity(set, emit, {}, 1, o);
+  // Two parallel unit squares one unit apart (Howell's catalogue C-11): F = 0.199825.
+  double received = 0.0;
+  for (std::uint32_t i = receiver.first; i < receiver.second; ++i)
+    received += r.radiosity[i * 3] * set.patches[i].area;
+  EXPECT_NEAR(received, 0.199825, 0.005 * 0.199825);  // 2M rays: sigma ~0.1%
+  expect_energy_balance(r.stats);
+}
+
+TEST(Radiosity, OpenBoxBalancesEnergyAndLightEscapes) {
+  PatchSet set;
+  add_box(set, Vec3(0), Vec3(2, 2, 1), 0.6, 0.5, /*with_ceiling=*/false);
+  const auto lamp =
+      add_quad(set, {{0.8, 0.8, 0.9}, {0.8, 1.2, 0.9}, {1.2, 1.2, 0.9}, {1.2, 0.8, 0.9}}, 0.8, 0.0, 9);
+  std::vector<AreaEmitter> emit;
+  for (std::uint32_t i = lamp.first; i < lamp.second; ++i) emit.push_back({i, 0, {100.0, 50.0, 25.0}});
+  RadiosityOptions o;
+  o.rays_per_watt = 2000;
+  const auto r = solve_radiosity(set, emit, {}, 1, o);
+  EXPECT_GT(r.stats.escaped, 0.0);
+  EXPECT_LE(r.stats.unshot, 0.01 * r.stats.emitted);
+  expect_energy_balance(r.stats);
+  expect_finite_non_negative(r);
+}
+
+TEST(Radiosity, BackToBackWallsDoNotLeakIntoTheNextRoom) {
+  // Two closed rooms sharing the plane x = 2, each drawn with its own wall copy (as EnergyPlus does), and
+  // both drawn from separately diced faces: only room A has a lamp, on circuit 1 of 2.
+  PatchSet set;
+  add_box(set, Vec3(0, 0, 0), Vec3(2, 2, 2.5), 0.7, 0.35);
+  const auto room_b_first = static_cast<std::uint32_t>(set.patches.size());
+  add_box(set, Vec3(2, 0, 0), Vec3(4, 2, 2.5), 0.7, 0.35);
+  const auto lamp =
+      add_quad(set, {{0.7, 0.7, 2.49}, {0.7, 1.3, 2.49}, {1.3, 1.3, 2.49}, {1.3, 0.7, 2.49}}, 0.8, 0.0);
+  std::vector<AreaEmitter> emit;
+  for (std::uint32_t i = lamp.first; i < lamp.second; ++i) emit.push_back({i, 1, model::Rgb(200.0)});
+  RadiosityOptions o;
+  o.rays_per_watt = 500;
+  const auto r = solve_radiosity(set, emit, {}, 2, o);
+  for (std::uint32_t i = room_b_first; i < lamp.first; ++i)
+    for (int k = 0; k < 6; ++k) ASSERT_EQ(r.radiosity[i * 6 + k], 0.0) << "patch " << i << " of room B lit";
+  for (std::uint32_t i = 0; i < room_b_first; ++i)
+    EXPECT_EQ(r.radiosity[i * 6], 0.0);  // circuit 0: no emitter
+  EXPECT_EQ(r.stats.escaped, 0.0);
+  // The only back faces rays can meet are the top of the one-sided lamp, seen from the ceiling 1 cm above.
+  EXPECT_LT(r.stats.back_face, 0.01 * r.stats.emitted);
+  expect_energy_balance(r.stats);
+}
+
+TEST(Radiosity, SliversTinyPatchesAndFlushLuminaireStayFinite) {
+  PatchSet set;
+  // Floor split into a wide quad and a 0.1 mm sliver, touching and coplanar; a 1 cm^2 tile; walls; and a
+  // luminaire flush with (coplanar to) the ceiling.
+  add_quad(set, {{0, 0, 0}, {1.9999, 0, 0}, {1.9999, 2, 0}, {0, 2, 0}}, 0.5, 0.25);
+  add_quad(set, {{1.9999, 0, 0}, {2, 0, 0}, {2, 2, 0}, {1.9999, 2, 0}}, 0.5, 0.25);
+  add_quad(set, {{1, 1, 0.001}, {1.01, 1, 0.001}, {1.01, 1.01, 0.001}, {1, 1.01, 0.001}}, 0.5, 0.0);
+  add_quad(set, {{0, 0, 2}, {0, 2, 2}, {2, 2, 2}, {2, 0, 2}}, 0.8, 0.25);
+  add_quad(set, {{0, 0, 0}, {0, 2, 0}, {0, 2, 2}, {0, 0, 2}}, 0.5, 0.25);
+  add_quad(set, {{2, 0, 0}, {2, 0, 2}, {2, 2, 2}, {2, 2, 0}}, 0.5, 0.25);
+  add_quad(set, {{0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0}}, 0.5, 0.25);
+  add_quad(set, {{0, 2, 0}, {2, 2, 0}, {2, 2, 2}, {0, 2, 2}}, 0.5, 0.25);
+  const auto lamp = add_quad(set, {{0.7, 0.7, 2}, {0.7, 1.3, 2}, {1.3, 1.3, 2}, {1.3, 0.7, 2}}, 0.8, 0.0);
+  std::vector<AreaEmitter> emit;
+  for (std::uint32_t i = lamp.first; i < lamp.second; ++i) emit.push_back({i, 0, model::Rgb(300.0)});
+  RadiosityOptions o;
+  o.rays_per_watt = 1000;
+  const auto r = solve_radiosity(set, emit, {}, 1, o);
+  expect_finite_non_negative(r);
+  expect_energy_balance(r.stats);
+  EXPECT_EQ(r.stats.escaped, 0.0) << "light leaked through a joint";
+  EXPECT_GT(r.radiosity[0], 0.0);  // the floor is lit
+}
+
+TEST(Radiosity, SpotLightsOnlyItsConeAndKeepsItsPower) {
+  PatchSet set;
+  add_box(set, Vec3(-3, -3, 0), Vec3(3, 3, 3), 0.0, 0.5);  // black walls and ceiling: they reflect nothing
+  for (auto& p : set.patches)
+    if (p.normal.z > 0.5) p.reflectance = model::Rgb(0.5);  // the floor cannot see itself: only direct light
+  PointEmitter spot;
+  spot.position = {0, 0, 2.9};
+  spot.axis = {0, 0, -1};
+  spot.cone = 20.0 * 3.141592653589793 / 180.0;
+  spot.exponent = 4.0;
+  spot.power = model::Rgb(100.0);
+  RadiosityOptions o;
+  o.rays_per_watt = 2000;
+  const auto r = solve_radiosity(set, {}, std::span<const PointEmitter>(&spot, 1), 1, o);
+  const double footprint = 2.9 * std::tan(spot.cone) + 0.75;  // cone radius on the floor plus one patch
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < set.patches.size(); ++i) {
+    const auto& p = set.patches[i];
+    if (p.normal.z < 0.5) continue;
+    const Vec3 c = (set.vertices[p.v[0]] + set.vertices[p.v[1]] + set.vertices[p.v[2]]) / 3.0;
+    if (std::hypot(c.x, c.y) > footprint)
+      EXPECT_EQ(r.radiosity[i * 3], 0.0) << "patch " << i << " outside the cone";
+    lit += r.radiosity[i * 3] > 0.0;
+  }
+  EXPECT_GT(lit, 4u);
+  EXPECT_EQ(r.stats.escaped, 0.0);
+  EXPECT_GE(r.stats.absorbed, 99.0);  // closed room: all but the 1% residual is absorbed
+  expect_energy_balance(r.stats);
+}
+
+TEST(Radiosity, SameResultForOneAndTwoThreads) {
+  PatchSet set;
+  add_box(set, Vec3(0), Vec3(2, 3, 2.5), 0.6, 0.5);
+  std::vector<AreaEmitter> emit{{0, 0, model::Rgb(50.0)}};
+  RadiosityOptions o;
+  o.rays_per_watt = 3000;
+  o.threads = 1;
+  const auto one = solve_radiosity(set, emit, {}, 1, o);
+  o.threads = 2;
+  const auto two = solve_radiosity(set, emit, {}, 1, o);
+  EXPECT_EQ(one.radiosity, two.radiosity);
+}
+
+}  // namespace
+}  // namespace walk::compiler
