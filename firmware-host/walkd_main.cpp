@@ -31,9 +31,8 @@ int main(int argc, char** argv) {
     auto renderer = make_gl_renderer(*bundle, config.display);
     spdlog::info("walkd: bundle {} ({} polygons, {} cells), renderer {}, {}", config.bundle,
                  bundle->polygons().size(), bundle->cells().size(), renderer->name(),
-                 config.simulation.seconds > 0
-                     ? "simulated " + std::to_string(config.simulation.seconds) + " s"
-                     : std::string("real time"));
+                 config.simulation.seconds > 0 ? fmt::format("simulated {:g} s", config.simulation.seconds)
+                                               : std::string("real time"));
     Daemon daemon(config, *bundle, *renderer, open_devices(config.devices));
     daemon.run(stop_flag());
   } catch (const walk::Error& e) {

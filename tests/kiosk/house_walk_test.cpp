@@ -2,11 +2,16 @@
 // daemon (fake renderer: this checks the walk, not the pixels) and, when walkd is built, with the real
 // binary.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "compiler/pipeline.hpp"
 #include "fake_renderer.hpp"
@@ -77,6 +82,46 @@ TEST_F(HouseWalkTest, WalkdBinaryRunsTheDemoAndWritesFrames) {
   EXPECT_TRUE(fs::exists(out / "frame_000000.png"));
   EXPECT_TRUE(fs::exists(out / "frame_000001.png"));  // t = 4 s
   EXPECT_NE(log_text.str().find("room '5642' -> '5627'"), std::string::npos) << log_text.str();
+}
+
+TEST_F(HouseWalkTest, WalkdStopsCleanlyOnSigtermInRealTime) {
+  const std::string walkd = WALK_BINARY_DIR "/firmware-host/walkd";
+  if (!fs::exists(walkd)) GTEST_SKIP() << "walkd not built";
+  const auto config = dir_ / "realtime.toml";
+  const auto out = dir_ / "realtime-out";
+  std::ofstream(config) << "bundle = \"" << bundle_path_ << "\"\n"
+                        << "[display]\nbackend = \"auto\"\nwidth = 160\nheight = 90\n"
+                        << "[start]\nx = -0.585\ny = 0.5\nfloor_z = 2.8\n"
+                        << "[simulation]\nseconds = 0\n";  // real time until stopped
+  const std::string log = (dir_ / "realtime.log").string();
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string config_arg = config.string(), out_arg = out.string();
+    std::freopen(log.c_str(), "w", stdout);
+    std::freopen(log.c_str(), "a", stderr);
+    execl(walkd.c_str(), "walkd", "--config", config_arg.c_str(), "--output", out_arg.c_str(), nullptr);
+    _exit(127);
+  }
+  // Wait for the first frames (the summary's folder appears when the loop starts), then stop it like systemd.
+  for (int i = 0; i < 300 && !fs::exists(out); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  std::ifstream log_in(log);
+  std::stringstream log_text;
+  log_text << log_in.rdbuf();
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 1 && log_text.str().find("backend") != std::string::npos)
+    GTEST_SKIP() << "no GL backend here: " << log_text.str();
+  ASSERT_TRUE(WIFEXITED(status)) << log_text.str();
+  EXPECT_EQ(WEXITSTATUS(status), 0) << log_text.str();
+  std::ifstream in(out / "summary.json");
+  std::stringstream json;
+  json << in.rdbuf();
+  EXPECT_NE(json.str().find("\"stopped_by\": \"signal\""), std::string::npos) << json.str();
+  EXPECT_NE(json.str().find("\"mode\": \"realtime\""), std::string::npos) << json.str();
 }
 
 }  // namespace
