@@ -2,11 +2,14 @@
 // backend, and writes the views as PNGs under the build folder for a person to look at.
 #include <glad/gl.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
 #include <iostream>
 
+#include "compiler/pipeline.hpp"
+#include "model/bundle.hpp"
 #include "render_test_support.hpp"
 #include "two_rooms.hpp"
 
@@ -47,6 +50,30 @@ TEST(FrameTime, TwoRoomsAt1280x720) {
       }
     }
   }
+}
+
+TEST(FrameTime, HouseAt1280x720) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("walk_frame_time_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "house.walk").string();
+  compiler::compile_to_file(std::string(WALK_SOURCE_DIR) + "/config/scenes/house.toml", path, true);
+  auto bundle = model::Bundle::open(path);
+  ASSERT_FALSE(bundle->luminaires().empty());
+  // Under a middle-floor luminaire, looking across its room and through a door (see `walk inspect`).
+  const float* lamp = bundle->luminaires()[bundle->luminaires().size() / 2].position;
+  View view;
+  view.eye = {lamp[0], lamp[1], lamp[2] - 1.2};
+  view.forward = {-1.0, 0.1, -0.2};
+  for (BackendKind kind : {BackendKind::OSMesa, BackendKind::EGL}) {
+    auto backend = headless(kind, kFrameWidth, kFrameHeight);
+    Renderer renderer(*bundle);
+    const double ms = ms_per_frame(renderer, view, 20);
+    std::cout << "[ frame    ] house, " << backend->name() << " 1280x720, "
+              << renderer.last_stats().triangles_drawn << " triangles, " << bundle->circuits().size()
+              << " circuits: " << ms << " ms per frame\n";
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
