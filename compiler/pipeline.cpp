@@ -13,6 +13,8 @@
 #include "compiler/geometry/openings.hpp"
 #include "compiler/import/dxf_reader.hpp"
 #include "compiler/lighting/direct_light.hpp"
+#include "compiler/radiosity/progressive_solver.hpp"
+#include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/apply_rules.hpp"
 #include "compiler/scene/luminaires.hpp"
 #include "model/error.hpp"
@@ -160,6 +162,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   std::vector<std::uint32_t> sample_vertex;  // bundle vertex of each sample
   std::vector<Triangle> occluders;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> panel_polygons;  // (bundle polygon, luminaire)
+  PatchSet patches;  // vertices numbered as the bundle's, in double precision
   {
     StageTimer t(stages, "mesh");
     std::vector<model::Polygon> panels;
@@ -181,6 +184,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
           r.albedo[a] = static_cast<float>(albedo[a]);
         }
         r.polygon = id;
+        patches.vertices.push_back(v);
         if (poly.role != model::Role::Luminaire) {
           samples.push_back({v, mesh.normal, albedo});
           sample_vertex.push_back(static_cast<std::uint32_t>(out.vertices.size()));
@@ -189,6 +193,9 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       }
       const auto first_index = static_cast<std::uint32_t>(out.indices.size());
       for (std::uint32_t i : mesh.triangles) out.indices.push_back(first_vertex + i);
+      for (std::size_t i = 0; i + 2 < mesh.triangles.size(); i += 3)
+        patches.add(first_vertex + mesh.triangles[i], first_vertex + mesh.triangles[i + 1],
+                    first_vertex + mesh.triangles[i + 2], albedo, id);
       model::PolygonRecord rec{};
       rec.first_index = first_index;
       rec.index_count = static_cast<std::uint32_t>(mesh.triangles.size());
@@ -237,6 +244,28 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     StageTimer t(stages, "light");
     if (model.luminaires.empty()) {
       t.skipped("no luminaires: display shows ambient light only");
+    } else if (config.lighting.method == LightingMethod::Radiosity) {
+      std::vector<AreaEmitter> emitters;
+      for (std::uint32_t p = 0; p < patches.patches.size(); ++p) {
+        for (const auto& [polygon, luminaire] : panel_polygons) {
+          if (patches.patches[p].polygon != polygon) continue;
+          const auto& l = model.luminaires[luminaire];
+          emitters.push_back({p, l.circuit, l.power / (l.width * l.height)});
+        }
+      }
+      RadiosityOptions ro;
+      ro.rays_per_watt = config.lighting.rays_per_watt;
+      ro.residual = config.lighting.residual;
+      ro.threads = options.threads;
+      const RadiosityResult r = solve_radiosity(patches, emitters, {}, circuits, ro);
+      out.light = vertex_radiosity(patches, r);
+      const auto& s = r.stats;
+      t.done(
+          patches.patches.size(), s.rays,
+          fmt::format("radiosity: {} patches, {} circuits, {} rays in {} shots / {} rounds, {:.2f} Mrays/s, "
+                      "residual {:.2f}%, absorbed {:.1f} W escaped {:.1f} W of {:.1f} W",
+                      patches.patches.size(), circuits, s.rays, s.shots, s.rounds, s.rays / s.seconds * 1e-6,
+                      100.0 * s.unshot / s.emitted, s.absorbed, s.escaped, s.emitted));
     } else {
       const TriangleBvh bvh(std::move(occluders));
       DirectLightStats s;
@@ -253,8 +282,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
             out.light[(v * circuits + l.circuit) * 3 + c] = l.power[c] / (l.width * l.height);
       }
       t.done(samples.size(), s.shadow_rays,
-             fmt::format("{} shadow rays, {} occluded, {} luminaires, {} circuits", s.shadow_rays, s.occluded,
-                         model.luminaires.size(), circuits));
+             fmt::format("direct: {} shadow rays, {} occluded, {} luminaires, {} circuits", s.shadow_rays,
+                         s.occluded, model.luminaires.size(), circuits));
     }
   }
 

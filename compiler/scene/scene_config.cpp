@@ -160,13 +160,25 @@ void read_circuits(const TomlTable& root, SceneConfig& cfg) {
 void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("lighting");
   if (!t) return;
-  t->only({"grid", "samples_per_luminaire", "ambient", "exposure"});
+  t->only({"method", "grid", "samples_per_luminaire", "rays_per_watt", "residual", "ambient", "exposure"});
   auto& l = cfg.lighting;
+  if (const auto m = t->string("method")) {
+    if (*m == "radiosity")
+      l.method = LightingMethod::Radiosity;
+    else if (*m == "direct")
+      l.method = LightingMethod::Direct;
+    else
+      t->fail("method", "unknown method '" + *m + "' (known: radiosity, direct)");
+  }
   l.grid = positive(*t, "grid", l.grid);
+  if (l.grid < kMinGrid) t->fail("grid", "must be at least " + std::to_string(kMinGrid) + " m");
   if (const auto s = t->integer("samples_per_luminaire")) {
     if (*s < 1 || *s > 4096) t->fail("samples_per_luminaire", "must be between 1 and 4096");
     l.samples_per_luminaire = static_cast<int>(*s);
   }
+  l.rays_per_watt = positive(*t, "rays_per_watt", l.rays_per_watt);
+  l.residual = positive(*t, "residual", l.residual);
+  if (l.residual >= 1.0) t->fail("residual", "must be below 1 (a fraction of the emitted power)");
   l.ambient = t->number("ambient").value_or(l.ambient);
   if (l.ambient < 0.0) t->fail("ambient", "must not be negative");
   if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);

@@ -36,10 +36,18 @@ struct CircuitRule {
   double default_level = 1.0;
 };
 
+// Patch edges shorter than this (metres) would only multiply patches: 2 cm is finer than any display needs.
+inline constexpr double kMinGrid = 0.02;
+
+enum class LightingMethod { Radiosity, Direct };
+
 struct LightingConfig {
-  double grid = 0.5;               // metres between lighting samples on surfaces
-  int samples_per_luminaire = 8;   // jittered points per area luminaire for direct light and shadows
-  double ambient = 0.02;           // W/m2 per unit albedo added at display time for light not yet simulated
+  LightingMethod method = LightingMethod::Radiosity;
+  double grid = 0.5;  // metres: patch edge length (the paper's 21 square-inch patches are about 0.12 m)
+  int samples_per_luminaire = 8;   // direct method: jittered points per area luminaire
+  double rays_per_watt = 1000.0;   // radiosity: rays shot per watt of unshot power (accuracy knob)
+  double residual = 0.01;          // radiosity: stop when unshot power < residual * emitted
+  double ambient = 0.02;           // W/m2 per unit albedo added at display time for light not simulated
   std::optional<double> exposure;  // W/m2 shown as white; automatic when absent
 };
 
