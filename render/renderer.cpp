@@ -5,6 +5,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -126,7 +127,7 @@ Renderer::~Renderer() = default;
 void Renderer::set_dimmers(std::span<const float> levels) {
   auto& own = impl_->levels;
   for (std::size_t c = 0; c < std::min(levels.size(), own.size()); ++c)
-    own[c] = std::clamp(levels[c], 0.0f, 1.0f);
+    own[c] = std::isnan(levels[c]) ? 0.0f : std::clamp(levels[c], 0.0f, 1.0f);
 }
 
 std::span<const float> Renderer::dimmers() const {

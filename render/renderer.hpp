@@ -43,12 +43,14 @@ struct FrameStats {
 
 class Renderer {
  public:
+  // Uploads the bundle's buffers into the current context, which must stay current for every call and for
+  // the destructor. The bundle must outlive the renderer. Throws walk::Error for more than 64 circuits.
   explicit Renderer(const model::Bundle& bundle);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // One level per circuit, 0..1; missing entries keep their previous level.
+  // One level per circuit, clamped to 0..1 (NaN reads as 0); missing entries keep their previous level.
   void set_dimmers(std::span<const float> levels);
   [[nodiscard]] std::span<const float> dimmers() const;
   // On by default: each zone's copy of a double wall faces into its own zone.
