@@ -1,0 +1,138 @@
+#include "compiler/raycast/embree_caster.hpp"
+
+#include "model/error.hpp"
+
+#ifdef WALK_HAVE_EMBREE
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <glm/geometric.hpp>
+#include <limits>
+
+#include "compiler/raycast/local_triangles.hpp"
+
+namespace walk::compiler {
+namespace {
+
+// Embree's memory monitor: bytes it has allocated for this device (scene, BVH, buffers).
+bool monitor(void* user, ssize_t bytes, bool /*post*/) {
+  static_cast<std::atomic<std::int64_t>*>(user)->fetch_add(bytes);
+  return true;
+}
+
+float clamp_float(double x) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  return static_cast<float>(x > kMax ? kMax : x);
+}
+
+class EmbreeCaster final : public RayCaster {
+ public:
+  explicit EmbreeCaster(std::span<const Triangle> triangles) : local_(triangles) {
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw Error("embree: rtcNewDevice failed");
+    rtcSetDeviceMemoryMonitorFunction(device_, monitor, &bytes_);
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    const std::size_t n = local_.triangles.size();
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), 3 * n));
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const Triangle& t = local_.triangles[i];
+      const model::Vec3* p[3] = {&t.a, &t.b, &t.c};
+      for (int c = 0; c < 3; ++c) {
+        for (int a = 0; a < 3; ++a) v[9 * i + 3 * c + a] = static_cast<float>((*p[c])[a]);
+        idx[3 * i + c] = static_cast<unsigned>(3 * i + c);
+      }
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene_);
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw Error("embree: scene build failed");
+  }
+  ~EmbreeCaster() override {
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+  }
+  EmbreeCaster(const EmbreeCaster&) = delete;
+  EmbreeCaster& operator=(const EmbreeCaster&) = delete;
+
+  [[nodiscard]] std::string_view name() const override { return "embree"; }
+
+  [[nodiscard]] RayHit closest(const Ray& ray) const override {
+    RTCRayHit rh{};
+    fill(ray, rh.ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+    const std::uint32_t i = rh.hit.primID;
+    return {rh.ray.tfar, i, local_.triangles[i].polygon, local_.front(i, ray.dir)};
+  }
+
+  [[nodiscard]] bool occluded(const Ray& ray) const override {
+    RTCRay r{};
+    fill(ray, r);
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcOccluded1(scene_, &ctx, &r);
+    return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+  }
+
+  [[nodiscard]] std::size_t memory_bytes() const override {
+    return static_cast<std::size_t>(bytes_.load()) + local_.memory_bytes();
+  }
+
+ private:
+  void fill(const Ray& ray, RTCRay& r) const {
+    const model::Vec3 o = ray.origin - local_.centre;
+    r.org_x = static_cast<float>(o.x);
+    r.org_y = static_cast<float>(o.y);
+    r.org_z = static_cast<float>(o.z);
+    r.dir_x = static_cast<float>(ray.dir.x);
+    r.dir_y = static_cast<float>(ray.dir.y);
+    r.dir_z = static_cast<float>(ray.dir.z);
+    r.tnear = static_cast<float>(std::max(ray.tmin, 0.0));
+    r.tfar = clamp_float(ray.tmax);
+    r.mask = 0xFFFFFFFFu;
+    r.flags = 0;
+  }
+
+  LocalTriangles local_;  // for polygon ids and facing
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::atomic<std::int64_t> bytes_{0};
+};
+
+}  // namespace
+
+bool embree_available() {
+  return true;
+}
+
+std::unique_ptr<RayCaster> make_embree_caster(std::span<const Triangle> triangles) {
+  return std::make_unique<EmbreeCaster>(triangles);
+}
+
+}  // namespace walk::compiler
+
+#else
+
+namespace walk::compiler {
+
+bool embree_available() {
+  return false;
+}
+
+std::unique_ptr<RayCaster> make_embree_caster(std::span<const Triangle>) {
+  throw Error(
+      "ray caster 'embree': this build has no Embree (WALK_WITH_EMBREE=OFF or libembree-dev missing)");
+}
+
+}  // namespace walk::compiler
+
+#endif
