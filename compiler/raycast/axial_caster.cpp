@@ -1,0 +1,44 @@
+#include "compiler/raycast/axial_caster.hpp"
+
+namespace walk::compiler {
+namespace {
+
+std::vector<std::uint32_t> not_taken(const std::vector<std::uint8_t>& taken) {
+  std::vector<std::uint32_t> ids;
+  for (std::uint32_t i = 0; i < taken.size(); ++i)
+    if (!taken[i]) ids.push_back(i);
+  return ids;
+}
+
+}  // namespace
+
+AxialCaster::AxialCaster(std::span<const Triangle> triangles)
+    : local_(triangles),
+      axial_(local_.triangles.size(), 0),
+      planes_(local_, axial_),
+      bsp_(local_, not_taken(axial_)) {
+  std::vector<std::uint8_t>().swap(axial_);
+}
+
+RayHit AxialCaster::closest(const Ray& ray) const {
+  RayHit best;
+  const model::Vec3 o = ray.origin - local_.centre;
+  const double tmin = std::max(ray.tmin, 0.0);
+  const double tie = tie_tolerance(ray.dir);
+  planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
+  if (!bsp_.empty()) bsp_.closest(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax, tie, best);
+  return best;
+}
+
+bool AxialCaster::occluded(const Ray& ray) const {
+  const model::Vec3 o = ray.origin - local_.centre;
+  const double tmin = std::max(ray.tmin, 0.0);
+  if (planes_.occluded(o, ray.dir, tmin, ray.tmax)) return true;
+  return !bsp_.empty() && bsp_.occluded(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax);
+}
+
+std::size_t AxialCaster::memory_bytes() const {
+  return local_.memory_bytes() + planes_.memory_bytes() + bsp_.memory_bytes();
+}
+
+}  // namespace walk::compiler

@@ -1,0 +1,27 @@
+#pragma once
+// The paper's ray caster: axial polygons in sorted planes (AxialPlanes), the rest in a BSP tree (PolygonBsp)
+// searched only up to the axial hit.
+#include "compiler/raycast/axial_planes.hpp"
+#include "compiler/raycast/polygon_bsp.hpp"
+
+namespace walk::compiler {
+
+class AxialCaster final : public RayCaster {
+ public:
+  explicit AxialCaster(std::span<const Triangle> triangles);
+  [[nodiscard]] std::string_view name() const override { return "axial"; }
+  [[nodiscard]] RayHit closest(const Ray& ray) const override;
+  [[nodiscard]] bool occluded(const Ray& ray) const override;
+  [[nodiscard]] std::size_t memory_bytes() const override;
+
+  [[nodiscard]] const AxialPlanes& planes() const { return planes_; }
+  [[nodiscard]] const PolygonBsp& bsp() const { return bsp_; }
+
+ private:
+  LocalTriangles local_;
+  std::vector<std::uint8_t> axial_;  // per triangle: taken by the planes (build scratch, then freed)
+  AxialPlanes planes_;
+  PolygonBsp bsp_;
+};
+
+}  // namespace walk::compiler

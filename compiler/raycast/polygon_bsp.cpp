@@ -1,0 +1,217 @@
+#include "compiler/raycast/polygon_bsp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace walk::compiler {
+namespace {
+
+constexpr std::size_t kLeafSize = 4;
+constexpr int kMaxDepth = 56;
+// Splitting planes tried per node: planes of this many polygons spread through the node's list, plus the
+// three axis planes through the node's centre.
+constexpr std::size_t kCandidates = 8;
+// Candidates are scored on at most this many of the node's polygons.
+constexpr std::size_t kScoreSample = 256;
+// A straddler costs a reference on both sides and a test on either; weigh it against imbalance.
+constexpr double kStraddleCost = 3.0;
+// A vertex closer than this to a plane lies in it (1 nm, as kEdgeSlack); it also widens the ray intervals
+// on either side of a split so that rounding near the plane never skips the side holding the hit.
+constexpr double kPlaneEps = 1e-9;
+
+enum Side { kOn, kFront, kBack, kStraddle };
+
+// A triangle in the plane goes to the side its front faces: the tree keeps polygons in its leaves only, so
+// a wall of many coplanar polygons is split further in space instead of being one long list at a node.
+Side classify(const Triangle& t, const model::Vec3& tn, const model::Vec3& n, double offset) {
+  const double d[3] = {glm::dot(n, t.a) - offset, glm::dot(n, t.b) - offset, glm::dot(n, t.c) - offset};
+  const double lo = std::min({d[0], d[1], d[2]}), hi = std::max({d[0], d[1], d[2]});
+  if (hi <= kPlaneEps && lo >= -kPlaneEps) return glm::dot(tn, n) >= 0.0 ? kFront : kBack;
+  if (lo >= -kPlaneEps) return kFront;
+  if (hi <= kPlaneEps) return kBack;
+  return kStraddle;
+}
+
+bool slab(const model::Vec3& lo, const model::Vec3& hi, const model::Vec3& o, const model::Vec3& d,
+          double& t0, double& t1) {
+  for (int a = 0; a < 3; ++a) {
+    const double inv = 1.0 / d[a];
+    double n = (lo[a] - o[a]) * inv, f = (hi[a] - o[a]) * inv;
+    if (n > f) std::swap(n, f);
+    if (!std::isnan(n)) t0 = std::max(t0, n);  // NaN: origin on the slab face of a parallel ray
+    if (!std::isnan(f)) t1 = std::min(t1, f);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+PolygonBsp::PolygonBsp(const LocalTriangles& triangles, std::vector<std::uint32_t> ids) : tris_(&triangles) {
+  stats_.triangles = ids.size();
+  if (!ids.empty()) build(ids, 0);
+  stats_.nodes = nodes_.size();
+  stats_.references = items_.size();
+}
+
+std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
+  const auto index = static_cast<std::uint32_t>(nodes_.size());
+  nodes_.emplace_back();
+  stats_.depth = std::max(stats_.depth, depth);
+  const auto& tris = tris_->triangles;
+  model::Vec3 lo(INFINITY), hi(-INFINITY);
+  for (const auto i : ids) {
+    lo = glm::min(lo, glm::min(tris[i].a, glm::min(tris[i].b, tris[i].c)));
+    hi = glm::max(hi, glm::max(tris[i].a, glm::max(tris[i].b, tris[i].c)));
+  }
+  nodes_[index].lo = lo - kPlaneEps;
+  nodes_[index].hi = hi + kPlaneEps;
+  auto keep_here = [&](const std::vector<std::uint32_t>& here) {
+    nodes_[index].first = static_cast<std::uint32_t>(items_.size());
+    nodes_[index].count = static_cast<std::uint32_t>(here.size());
+    items_.insert(items_.end(), here.begin(), here.end());
+  };
+  if (ids.size() <= kLeafSize || depth >= kMaxDepth) {
+    keep_here(ids);
+    return index;
+  }
+
+  // Candidate planes: some polygons' own planes and the axis planes through the centre.
+  std::vector<std::pair<model::Vec3, double>> candidates;
+  for (std::size_t j = 0; j < kCandidates && j < ids.size(); ++j) {
+    const auto i = ids[j * ids.size() / std::min(kCandidates, ids.size())];
+    const double len = glm::length(tris_->normals[i]);
+    if (!(len > 0.0)) continue;
+    const model::Vec3 n = tris_->normals[i] / len;
+    candidates.emplace_back(n, glm::dot(n, tris[i].a));
+  }
+  const model::Vec3 centre = (lo + hi) * 0.5;
+  for (int a = 0; a < 3; ++a) {
+    model::Vec3 n(0.0);
+    n[a] = 1.0;
+    candidates.emplace_back(n, centre[a]);
+  }
+  const std::size_t stride = std::max<std::size_t>(1, ids.size() / kScoreSample);
+  double best_score = INFINITY;
+  int best = -1;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    std::size_t count[4] = {0, 0, 0, 0}, sampled = 0;
+    for (std::size_t j = 0; j < ids.size(); j += stride, ++sampled)
+      ++count[classify(tris[ids[j]], tris_->normals[ids[j]], candidates[c].first, candidates[c].second)];
+    if (count[kFront] == 0 || count[kBack] == 0) continue;  // no progress
+    const double score = std::abs(static_cast<double>(count[kFront]) - static_cast<double>(count[kBack])) +
+                         kStraddleCost * static_cast<double>(count[kStraddle]);
+    if (score < best_score) {
+      best_score = score;
+      best = static_cast<int>(c);
+    }
+  }
+  if (best < 0) {
+    keep_here(ids);
+    return index;
+  }
+  const auto [n, offset] = candidates[best];
+  std::vector<std::uint32_t> front, back;
+  for (const auto i : ids) {
+    switch (classify(tris[i], tris_->normals[i], n, offset)) {
+      case kOn:
+        break;  // classify never answers kOn
+      case kFront:
+        front.push_back(i);
+        break;
+      case kBack:
+        back.push_back(i);
+        break;
+      case kStraddle:
+        front.push_back(i);
+        back.push_back(i);
+        break;
+    }
+  }
+  if (front.size() == ids.size() || back.size() == ids.size()) {  // no progress after all
+    keep_here(ids);
+    return index;
+  }
+  nodes_[index].normal = n;
+  nodes_[index].offset = offset;
+  std::vector<std::uint32_t>().swap(ids);
+  if (!front.empty()) {
+    const std::uint32_t f = build(front, depth + 1);
+    nodes_[index].front = f;
+  }
+  if (!back.empty()) {
+    const std::uint32_t b = build(back, depth + 1);
+    nodes_[index].back = b;
+  }
+  return index;
+}
+
+template <bool kAny>
+bool PolygonBsp::search(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
+                        RayHit* best) const {
+  struct Entry {
+    std::uint32_t node;
+    double t0, t1;
+  };
+  Entry stack[2 * kMaxDepth + 8];
+  int top = 0;
+  double limit = tmax;
+  if (!kAny && best->hit()) limit = std::min(limit, best->t + tie);
+  stack[top++] = {0, tmin, limit};
+  const model::Vec3& o = ray.origin;
+  const auto& tris = tris_->triangles;
+  while (top > 0) {
+    const Entry e = stack[--top];
+    double t0 = e.t0, t1 = std::min(e.t1, limit);
+    if (t0 > t1) continue;
+    const Node& n = nodes_[e.node];
+    if (!slab(n.lo, n.hi, o, dir, t0, t1)) continue;
+    for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
+      const std::uint32_t i = items_[j];
+      double t = 0.0;
+      if (!intersect_watertight(ray, tris[i].a, tris[i].b, tris[i].c, tmin, limit, t)) continue;
+      if constexpr (kAny) return true;
+      const bool front = tris_->front(i, dir);
+      if (better_hit(t, front, i, *best, tie)) {
+        *best = {t, i, tris[i].polygon, front};
+        limit = std::min(tmax, t + tie);
+      }
+    }
+    if (n.front == kNoHit && n.back == kNoHit) continue;
+    const double dist = glm::dot(n.normal, o) - n.offset;
+    const double denom = glm::dot(n.normal, dir);
+    // Rounding margin in t: the classification tolerance plus the rounding of dist, over the approach speed.
+    const double margin = (2.0 * kPlaneEps + 1e-15 * std::abs(dist)) / std::abs(denom);
+    auto push = [&](std::uint32_t child, double a, double b) {
+      if (child != kNoHit && a <= b && a <= limit) stack[top++] = {child, a, b};
+    };
+    if (!(std::abs(denom) > 0.0) || !std::isfinite(margin)) {  // parallel to the plane: stays on its side
+      if (dist >= -kPlaneEps) push(n.front, t0, t1);
+      if (dist <= kPlaneEps) push(n.back, t0, t1);
+      continue;
+    }
+    const double ts = -dist / denom;
+    const std::uint32_t first = denom > 0.0 ? n.back : n.front;  // the side the ray is on before ts
+    const std::uint32_t second = denom > 0.0 ? n.front : n.back;
+    push(second, std::max(t0, ts - margin), t1);  // pushed first: searched after the near side
+    push(first, t0, std::min(t1, ts + margin));
+  }
+  return false;
+}
+
+void PolygonBsp::closest(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
+                         RayHit& best) const {
+  if (!nodes_.empty() && ray.valid) search<false>(ray, dir, tmin, tmax, tie, &best);
+}
+
+bool PolygonBsp::occluded(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax) const {
+  return !nodes_.empty() && ray.valid && search<true>(ray, dir, tmin, tmax, 0.0, nullptr);
+}
+
+std::size_t PolygonBsp::memory_bytes() const {
+  return nodes_.capacity() * sizeof(Node) + items_.capacity() * sizeof(std::uint32_t);
+}
+
+}  // namespace walk::compiler

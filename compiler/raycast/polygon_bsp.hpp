@@ -1,0 +1,57 @@
+#pragma once
+// A BSP tree over the polygons that are not axial, as the paper keeps them: each node splits space by the
+// plane of one of its polygons or an axis plane through its centre (chosen among a sample for balance and few
+// straddlers); polygons go to the side they lie on (polygons in the plane to the side they face), straddlers
+// to both (referenced, not clipped, so no new slivers); polygons live in the leaves. Each node also keeps the
+// bounds of what lies below it, so a ray skips empty space.
+// Searched front to back, the search stops once it is beyond the best hit so far (the axial hit).
+#include <cstdint>
+#include <vector>
+
+#include "compiler/raycast/local_triangles.hpp"
+#include "compiler/raycast/watertight_triangle.hpp"
+
+namespace walk::compiler {
+
+class PolygonBsp {
+ public:
+  struct Stats {
+    std::size_t triangles = 0;
+    std::size_t nodes = 0;
+    std::size_t references = 0;  // triangle references in all nodes (straddlers count more than once)
+    int depth = 0;
+  };
+
+  // `triangles` must outlive the tree; `ids` are the triangles it holds.
+  PolygonBsp(const LocalTriangles& triangles, std::vector<std::uint32_t> ids);
+
+  // Improves `best` with hits in (tmin, min(tmax, best.t + tie)); the ray is local.
+  void closest(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
+               RayHit& best) const;
+  [[nodiscard]] bool occluded(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax) const;
+
+  [[nodiscard]] bool empty() const { return nodes_.empty(); }
+  [[nodiscard]] const Stats& stats() const { return stats_; }
+  [[nodiscard]] std::size_t memory_bytes() const;
+
+ private:
+  struct Node {
+    model::Vec3 normal{0.0};  // unit; the front side is where it points
+    double offset = 0.0;      // plane: dot(normal, p) == offset
+    model::Vec3 lo{0.0}, hi{0.0};
+    std::uint32_t front = kNoHit, back = kNoHit;  // children (kNoHit: none)
+    std::uint32_t first = 0, count = 0;           // triangles kept here, in items_
+  };
+
+  std::uint32_t build(std::vector<std::uint32_t>& ids, int depth);
+  template <bool kAny>
+  bool search(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
+              RayHit* best) const;
+
+  const LocalTriangles* tris_;
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> items_;
+  Stats stats_;
+};
+
+}  // namespace walk::compiler
