@@ -1,0 +1,178 @@
+// walk bench rays: our ray casters against Embree on the same ray sets, one CSV row per
+// (model, caster, ray set, threads): build time, memory, Mrays/s and the ratio to Embree.
+// walk bench rays --leak N: rays from inside closed boxes aimed at edges and vertices; escapes per caster.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <sstream>
+
+#include "bench/support/leak_box.hpp"
+#include "bench/support/ray_models.hpp"
+#include "bench/support/ray_sets.hpp"
+#include "compiler/raycast/axial_caster.hpp"
+#include "compiler/raycast/ray_caster.hpp"
+#include "tools/commands.hpp"
+
+namespace walk::tools {
+namespace {
+
+using compiler::Ray;
+using compiler::RayCaster;
+using compiler::RayHit;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+struct Options {
+  std::string models = "house,office,tower,conference,sibenik";
+  std::string casters = "axial,embree";
+  std::string threads = "1,2";
+  std::size_t rays = 1000000;
+  std::size_t leak = 0;
+  std::string data;
+};
+
+// Casts `rays` and returns seconds; closest hits for primary and radiosity sets, any-hit for occlusion.
+double cast(const RayCaster& c, const std::vector<Ray>& rays, bool any, unsigned threads, std::size_t& hits) {
+  std::vector<RayHit> h(any ? 0 : rays.size());
+  std::vector<std::uint8_t> o(any ? rays.size() : 0);
+  const auto t0 = Clock::now();
+  if (any)
+    c.occluded_batch(rays, o, threads);
+  else
+    c.closest_batch(rays, h, threads);
+  const double s = since(t0);
+  hits = 0;
+  for (const auto& x : h) hits += x.hit() ? 1 : 0;
+  for (const auto x : o) hits += x;
+  return s;
+}
+
+std::string structure_detail(const RayCaster& c) {
+  const auto* a = dynamic_cast<const compiler::AxialCaster*>(&c);
+  if (!a) return "";
+  const auto& p = a->planes().stats();
+  const auto& b = a->bsp().stats();
+  char buf[200];
+  std::snprintf(
+      buf, sizeof buf, "axial %zu tris in %zu+%zu+%zu planes (%zu rects); bsp %zu tris %zu nodes depth %d",
+      p.triangles, p.planes[0], p.planes[1], p.planes[2], p.rectangles, b.triangles, b.nodes, b.depth);
+  return buf;
+}
+
+int run_speed(const Options& opt) {
+  const auto casters = split(opt.casters);
+  std::vector<unsigned> threads;
+  for (const auto& t : split(opt.threads)) threads.push_back(static_cast<unsigned>(std::stoul(t)));
+  std::printf(
+      "model,polygons,triangles,caster,build_s,memory_mb,set,threads,rays,seconds,mrays_s,ratio_vs_embree,"
+      "hits,structure\n");
+  for (const auto& name : split(opt.models)) {
+    const auto model = bench::load_ray_model(name, opt.data);
+    const std::vector<std::pair<std::string, std::vector<Ray>>> sets{
+        {"primary", bench::primary_rays(model.triangles, opt.rays, 1)},
+        {"radiosity", bench::radiosity_rays(model.triangles, opt.rays, 2)},
+        {"occlusion", bench::occlusion_rays(model.triangles, opt.rays, 3)}};
+    std::map<std::pair<std::string, unsigned>, double> embree_rate;
+    struct Row {
+      std::string caster, set, detail;
+      double build, mb, seconds;
+      unsigned threads;
+      std::size_t hits;
+    };
+    std::vector<Row> rows;
+    for (const auto& cname : casters) {
+      const auto t0 = Clock::now();
+      const auto caster = compiler::make_ray_caster(cname, model.triangles);
+      const double build = since(t0);
+      const double mb = static_cast<double>(caster->memory_bytes()) / (1024.0 * 1024.0);
+      for (const auto& [set, rays] : sets) {
+        for (const unsigned th : threads) {
+          std::size_t hits = 0;
+          const double s = cast(*caster, rays, set == "occlusion", th, hits);
+          rows.push_back({cname, set, structure_detail(*caster), build, mb, s, th, hits});
+          if (cname == "embree") embree_rate[{set, th}] = rays.size() / s;
+        }
+      }
+    }
+    for (const auto& r : rows) {
+      const double rate = opt.rays / r.seconds;
+      const auto e = embree_rate.find({r.set, r.threads});
+      char ratio[32] = "";
+      if (e != embree_rate.end()) std::snprintf(ratio, sizeof ratio, "%.3f", rate / e->second);
+      std::printf("%s,%zu,%zu,%s,%.3f,%.2f,%s,%u,%zu,%.3f,%.3f,%s,%zu,%s\n", name.c_str(), model.polygons,
+                  model.triangles.size(), r.caster.c_str(), r.build, r.mb, r.set.c_str(), r.threads, opt.rays,
+                  r.seconds, rate / 1e6, ratio, r.hits, r.detail.c_str());
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
+int run_leak(const Options& opt) {
+  std::printf("box,caster,rays,escapes_closest,escapes_any,seconds\n");
+  const glm::dmat3 tilt(
+      glm::rotate(glm::rotate(glm::dmat4(1.0), 0.37, glm::dvec3(0, 0, 1)), 0.61, glm::dvec3(1, 1, 0)));
+  struct Box {
+    const char* name;
+    bool quads, rotated;
+  };
+  for (const Box b : {Box{"axial_quads", true, false}, Box{"axial_triangles", false, false},
+                      Box{"rotated_quads", true, true}, Box{"rotated_triangles", false, true}}) {
+    const auto box = bench::leak_box(b.quads, 5, b.rotated ? tilt : glm::dmat3(1.0));
+    const auto rays = bench::leak_rays(box, opt.leak, 7);
+    for (const auto& cname : split(opt.casters)) {
+      const auto caster = compiler::make_ray_caster(cname, box.triangles);
+      std::vector<RayHit> hits(rays.size());
+      std::vector<std::uint8_t> occluded(rays.size());
+      const auto t0 = Clock::now();
+      caster->closest_batch(rays, hits, 2);
+      caster->occluded_batch(rays, occluded, 2);
+      const double s = since(t0);
+      std::size_t escapes = 0, any = 0;
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        escapes += hits[i].hit() ? 0 : 1;
+        any += occluded[i] ? 0 : 1;
+      }
+      std::printf("%s,%s,%zu,%zu,%zu,%.3f\n", b.name, cname.c_str(), rays.size(), escapes, any, s);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_bench_rays_command(CLI::App& bench, int& exit_code) {
+  auto opt = std::make_shared<Options>();
+  if (const char* env = std::getenv("WALK_SHARED_DATA"))
+    opt->data = env;
+  else
+    opt->data = "../shared/data";
+  auto* rays =
+      bench.add_subcommand("rays", "Ray casting: ours vs Embree on primary, radiosity and occlusion rays");
+  rays->add_option("--models", opt->models,
+                   "Comma-separated: house, office, tower, conference, sibenik, cornell")
+      ->capture_default_str();
+  rays->add_option("--casters", opt->casters, "Comma-separated: axial, bvh, brute, embree")
+      ->capture_default_str();
+  rays->add_option("--threads", opt->threads, "Comma-separated thread counts")->capture_default_str();
+  rays->add_option("--rays", opt->rays, "Rays per set")->capture_default_str();
+  rays->add_option("--leak", opt->leak, "Instead: the leak test with this many rays per box");
+  rays->add_option("--data", opt->data, "Shared data folder (or WALK_SHARED_DATA)")->capture_default_str();
+  rays->callback([opt, &exit_code] { exit_code = opt->leak > 0 ? run_leak(*opt) : run_speed(*opt); });
+}
+
+}  // namespace walk::tools
