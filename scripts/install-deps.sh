@@ -16,6 +16,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
   # reference ray caster compared side by side with ours (optional at build time)
   libembree-dev
+  # model import: meshes (OBJ, glTF, 3DS...) through assimp; clang + compiler-rt for the libFuzzer targets
+  libassimp-dev clang libclang-rt-14-dev
 )
 
 missing=()
