@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -57,6 +58,29 @@ TEST_F(HouseWalkTest, DemoWalkPassesThroughTheDoorsIntoTheIntendedRooms) {
   EXPECT_EQ(nav.penetration(glm::dvec2(nav.feet()), nav.feet().z), 0.0);
   // Every dimmer channel found its circuit and the sweep reached the renderer.
   EXPECT_EQ(renderer.levels.size(), bundle->circuits().size());
+}
+
+TEST_F(HouseWalkTest, RandomWalkNeverEndsAFrameInsideAWall) {
+  const auto bundle = model::Bundle::open(bundle_path_);
+  Navigator nav({bundle->vertices(), bundle->indices(), bundle->polygons()});
+  const glm::dvec3 origin(bundle->meta().origin[0], bundle->meta().origin[1], bundle->meta().origin[2]);
+  ASSERT_TRUE(nav.place(glm::dvec3(-0.585, 0.5, 2.8) - origin));
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> angle(-3.14159, 3.14159), seconds(0.2, 3.0);
+  int room_changes = 0;
+  auto room = bundle->polygons()[nav.floor_polygon()].group;
+  for (int leg = 0; leg < 400; ++leg) {
+    const double heading = angle(rng);
+    for (int f = 0, n = static_cast<int>(seconds(rng) * 30); f < n; ++f) {
+      nav.walk(1.5, heading, 1.0 / 30.0);
+      ASSERT_LE(nav.penetration(glm::dvec2(nav.feet()), nav.feet().z), 1e-4) << "leg " << leg;
+      ASSERT_NEAR(nav.feet().z + origin.z, 2.8, 1e-3) << "left the first floor at leg " << leg;
+    }
+    const auto now = bundle->polygons()[nav.floor_polygon()].group;
+    room_changes += now != room;
+    room = now;
+  }
+  EXPECT_GT(room_changes, 0);  // the random walk found a door at least once
 }
 
 TEST_F(HouseWalkTest, WalkdBinaryRunsTheDemoAndWritesFrames) {
