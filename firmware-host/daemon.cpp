@@ -185,10 +185,9 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
                                 summary_.render_seconds > 0 ? summary_.frames / summary_.render_seconds : 0.0,
                                 cell_, room_name(), w.x, w.y, w.z));
     summary_.simulated_seconds = sim ? static_cast<double>(n + 1) * step : now;
-    if (!sim && !renderer_.windowed()) {
-      // Headless real time: hold the frame rate instead of spinning (a window waits on vsync instead).
-      const double next = now + step;
-      const double left = next - clock.now();
+    if (!sim) {
+      // Real time: hold simulation.frame_rate instead of spinning (a window without vsync would burn a core).
+      const double left = now + step - clock.now();
       if (left > 0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
     }
   }
