@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 class HouseWalkTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / "walk_house_walk";
+    // Per process: ctest -j runs each test of this suite in its own process at the same time.
+    dir_ = fs::temp_directory_path() / ("walk_house_walk_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     bundle_path_ = (dir_ / "house.walk").string();
