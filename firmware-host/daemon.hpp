@@ -38,7 +38,7 @@ class Daemon {
   void track_visits();
   [[nodiscard]] std::string room_name() const;
 
-  const KioskConfig& config_;
+  const KioskConfig config_;  // a copy: the caller's config may go out of scope
   const model::Bundle& bundle_;
   FrameRenderer& renderer_;
   DeviceSet devices_;
