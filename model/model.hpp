@@ -37,9 +37,17 @@ struct Polygon {
   std::uint32_t source_line = 0;
 };
 
-// An area luminaire: a rectangle centred at `position`, emitting into the half-space of `normal`.
+// What shape a luminaire emits from: an area panel, or a point (Quake `light` entities) emitting in all
+// directions or, for a spot, into a cone about `normal`.
+enum class LuminaireKind : std::uint8_t { Area = 0, Point = 1, Spot = 2 };
+
+// An area luminaire: a rectangle centred at `position`, emitting into the half-space of `normal`. Point and
+// spot luminaires use `position`, `power` and, for spots, `normal` (the cone axis), `cone` and `exponent`.
 struct Luminaire {
   std::string name;
+  LuminaireKind kind = LuminaireKind::Area;
+  double cone = 3.141592653589793;  // spot: half-angle of the cone, radians (pi: a full sphere)
+  double exponent = 0.0;  // spot: intensity falls off as cos(angle to axis)^exponent inside the cone
   Vec3 position{0.0};
   Vec3 normal{0.0, 0.0, -1.0};
   Vec3 u_axis{1.0, 0.0, 0.0};  // in-plane direction of `width`
