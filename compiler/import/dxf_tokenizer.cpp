@@ -1,6 +1,7 @@
 #include "compiler/import/dxf_tokenizer.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <string_view>
 
 #include "model/error.hpp"
@@ -46,21 +47,22 @@ bool DxfTokenizer::next(DxfPair& out) {
   return true;
 }
 
-double DxfTokenizer::number(const DxfPair& pair) const {
+double dxf_number(const DxfPair& pair, const std::string& file_) {
   double value = 0.0;
   const std::string& text = pair.value;
   // from_chars does not accept a leading '+', which some writers emit.
   const char* begin = text.data() + ((!text.empty() && text[0] == '+') ? 1 : 0);
   const auto [end, ec] = std::from_chars(begin, text.data() + text.size(), value);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
-    throw Error(located(file_, pair.value_line,
-                        "group code " + std::to_string(pair.code) + " needs a number, found \"" + text + "\"",
-                        "fix or remove this value in the DXF file"));
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    throw Error(
+        located(file_, pair.value_line,
+                "group code " + std::to_string(pair.code) + " needs a finite number, found \"" + text + "\"",
+                "fix or remove this value in the DXF file"));
   }
   return value;
 }
 
-int DxfTokenizer::integer(const DxfPair& pair) const {
+int dxf_integer(const DxfPair& pair, const std::string& file_) {
   int value = 0;
   const std::string& text = pair.value;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

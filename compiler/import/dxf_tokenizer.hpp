@@ -14,6 +14,11 @@ struct DxfPair {
   std::size_t value_line = 0;  // 1-based line of the value
 };
 
+// The value of a pair as a finite number or an integer; throws walk::Error naming `file` and the value's
+// line.
+[[nodiscard]] double dxf_number(const DxfPair& pair, const std::string& file);
+[[nodiscard]] int dxf_integer(const DxfPair& pair, const std::string& file);
+
 class DxfTokenizer {
  public:
   // `file` is only used in error messages.
@@ -24,8 +29,8 @@ class DxfTokenizer {
   bool next(DxfPair& out);
 
   // The value as a number; throws walk::Error naming the value's line when it is not one.
-  [[nodiscard]] double number(const DxfPair& pair) const;
-  [[nodiscard]] int integer(const DxfPair& pair) const;
+  [[nodiscard]] double number(const DxfPair& pair) const { return dxf_number(pair, file_); }
+  [[nodiscard]] int integer(const DxfPair& pair) const { return dxf_integer(pair, file_); }
 
   [[nodiscard]] std::size_t lines_read() const { return line_; }
   [[nodiscard]] const std::string& file() const { return file_; }
