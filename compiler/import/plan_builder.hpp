@@ -1,0 +1,51 @@
+#pragma once
+// A 2D floor plan to a 3D building. The plan's walls are closed outlines (LINE/LWPOLYLINE wires, both faces
+// of each wall drawn); doorways are gaps between two wall ends ("jambs": short outline edges facing each
+// other across the gap). Walls are extruded to `wall_height`; each doorway is closed above `door_height` by
+// a lintel, and gets an Opening polygon on each face of the wall, which the openings stage cuts out; every
+// region enclosed by walls and doorways is a room with a floor and a ceiling. Windows are placed where the
+// scene config says, as glass on both faces of the nearest wall plus the reveals between them.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "compiler/import/dxf_reader.hpp"
+#include "model/model.hpp"
+
+namespace walk::compiler {
+
+struct PlanWindow {
+  model::Vec3 at{0.0};  // a point on or next to the wall, metres (z ignored)
+  double width = 1.2;   // metres along the wall
+  double sill = 0.9;    // metres above the floor
+  double head = 2.1;
+};
+
+struct PlanOptions {
+  double wall_height = 2.7;         // metres
+  double door_height = 2.1;         // metres; below wall_height
+  double min_door_width = 0.5;      // gaps narrower than this are not doorways (chases, drawing slop)
+  double max_door_width = 2.0;      // gaps wider than this are open space, not doorways
+  double max_wall_thickness = 0.5;  // a jamb (wall end) is an outline edge no longer than this
+  double min_room_area = 0.25;      // square metres; smaller enclosed regions (wall cavities) get no floor
+  std::vector<PlanWindow> windows;
+};
+
+struct PlanStats {
+  std::size_t loops = 0;       // closed wall outlines found
+  std::size_t open_wires = 0;  // wires not on any closed outline: ignored
+  std::size_t jambs = 0;       // short outline edges that may end a wall
+  std::size_t doorways = 0;
+  std::size_t rooms = 0;
+  std::size_t wall_faces = 0;
+  std::size_t windows = 0;  // windows placed
+  std::size_t windows_unplaced = 0;
+  double wall_area = 0.0;   // square metres of wall footprint
+  double floor_area = 0.0;  // square metres of room floors
+};
+
+// Throws walk::Error naming `file` when the plan has no closed wall outline or options are inconsistent.
+[[nodiscard]] model::Model build_plan(const std::vector<DxfWire>& wires, const PlanOptions& options,
+                                      const std::string& file, PlanStats* stats);
+
+}  // namespace walk::compiler
