@@ -1,0 +1,175 @@
+#include "compiler/import/mesh_reader.hpp"
+
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <map>
+#include <numbers>
+
+#include "model/error.hpp"
+
+namespace walk::compiler {
+namespace {
+
+using model::Vec3;
+
+// Emissive faces of one mesh whose normals agree within this cosine and whose planes are within
+// kSamePlaneDistance (metres) form one luminaire: the two triangles of a quad lamp are one lamp.
+constexpr double kSameNormalCosine = 0.999;
+constexpr double kSamePlaneDistance = 1e-3;
+
+Vec3 newell(const std::vector<Vec3>& v) {
+  Vec3 n(0.0);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec3& a = v[i];
+    const Vec3& b = v[(i + 1) % v.size()];
+    n += Vec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+  }
+  return n;  // length = twice the area
+}
+
+struct Lamp {
+  Vec3 normal{0.0};
+  double offset = 0.0;
+  std::vector<Vec3> points;
+  double area = 0.0;
+  model::Rgb emission{0.0};
+  std::uint32_t circuit = 0;
+  std::string name;
+};
+
+model::Luminaire lamp_luminaire(const Lamp& lamp, double emission_scale) {
+  model::Luminaire l;
+  l.name = lamp.name;
+  l.normal = lamp.normal;
+  // The rectangle: the points' extent along the first edge's direction and across it, in the lamp's plane.
+  Vec3 u = lamp.points[1] - lamp.points[0];
+  u = glm::normalize(u - l.normal * glm::dot(u, l.normal));
+  const Vec3 v = glm::cross(l.normal, u);
+  double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
+  for (const Vec3& p : lamp.points) {
+    u0 = std::min(u0, glm::dot(p, u));
+    u1 = std::max(u1, glm::dot(p, u));
+    v0 = std::min(v0, glm::dot(p, v));
+    v1 = std::max(v1, glm::dot(p, v));
+  }
+  l.u_axis = u;
+  l.width = u1 - u0;
+  l.height = v1 - v0;
+  l.position = u * (0.5 * (u0 + u1)) + v * (0.5 * (v0 + v1)) + l.normal * lamp.offset;
+  l.power = lamp.emission * (std::numbers::pi * lamp.area * emission_scale);
+  l.circuit = lamp.circuit;
+  return l;
+}
+
+}  // namespace
+
+model::Model read_mesh(const std::string& path, const MeshOptions& options, MeshStats* stats_out) {
+  if (!(options.unit_scale > 0.0) || !std::isfinite(options.unit_scale))
+    throw Error(located(path, 0, "unit scale is not a positive number", "set `units` or `scale` in [model]"));
+  Assimp::Importer importer;
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_PreTransformVertices | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_ValidateDataStructure);
+  if (!scene || !scene->mRootNode)
+    throw Error(located(path, 0, std::string("assimp cannot read the file: ") + importer.GetErrorString(),
+                        "check the format and that the file is complete (OBJ also needs its .mtl)"));
+  MeshStats stats;
+  model::Model model;
+  model.materials.push_back({"default", {0.5, 0.5, 0.5}});
+  std::vector<std::uint32_t> material_index(scene->mNumMaterials, 0);
+  std::vector<model::Rgb> emission(scene->mNumMaterials, model::Rgb(0.0));
+  for (unsigned i = 0; i < scene->mNumMaterials; ++i) {
+    const aiMaterial* m = scene->mMaterials[i];
+    aiString name;
+    m->Get(AI_MATKEY_NAME, name);
+    aiColor3D kd(0.5f, 0.5f, 0.5f), ke(0.f, 0.f, 0.f);
+    m->Get(AI_MATKEY_COLOR_DIFFUSE, kd);
+    m->Get(AI_MATKEY_COLOR_EMISSIVE, ke);
+    const model::Rgb rho(std::clamp<double>(kd.r, 0.0, 1.0), std::clamp<double>(kd.g, 0.0, 1.0),
+                         std::clamp<double>(kd.b, 0.0, 1.0));
+    material_index[i] = static_cast<std::uint32_t>(model.materials.size());
+    model.materials.push_back({name.length ? name.C_Str() : "material" + std::to_string(i), rho});
+    emission[i] = {std::max(0.f, ke.r), std::max(0.f, ke.g), std::max(0.f, ke.b)};
+    ++stats.materials;
+  }
+  const auto convert = [&](const aiVector3D& a) {
+    const Vec3 p(a.x, a.y, a.z);
+    return (options.y_up ? Vec3(p.x, -p.z, p.y) : p) * options.unit_scale;
+  };
+  std::map<unsigned, std::uint32_t> circuits;  // emissive material -> circuit
+  std::vector<Lamp> lamps;
+  for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
+    const aiMesh* mesh = scene->mMeshes[mi];
+    ++stats.meshes;
+    stats.vertices += mesh->mNumVertices;
+    const std::string group = mesh->mName.length ? mesh->mName.C_Str() : "mesh" + std::to_string(mi);
+    const std::uint32_t g = model.group_index(group);
+    const unsigned mat = mesh->mMaterialIndex;
+    const bool emissive =
+        mat < emission.size() && std::max({emission[mat].r, emission[mat].g, emission[mat].b}) > 0;
+    const std::size_t first_lamp = lamps.size();
+    for (unsigned fi = 0; fi < mesh->mNumFaces; ++fi) {
+      const aiFace& f = mesh->mFaces[fi];
+      if (f.mNumIndices < 3) {
+        ++stats.skipped_primitives;
+        continue;
+      }
+      model::Polygon p;
+      for (unsigned k = 0; k < f.mNumIndices; ++k)
+        p.vertices.push_back(convert(mesh->mVertices[f.mIndices[k]]));
+      p.group = g;
+      p.material = mat < material_index.size() ? material_index[mat] : 0;
+      p.name = model.materials[p.material].name;
+      p.source_line = fi + 1;  // face number within its mesh: assimp keeps no line numbers
+      if (emissive) {
+        p.role = model::Role::Luminaire;
+        ++stats.emissive_faces;
+        const Vec3 n2 = newell(p.vertices);
+        const double twice = glm::length(n2);
+        if (twice > 0.0) {
+          const Vec3 n = n2 / twice;
+          const double offset = glm::dot(n, p.vertices[0]);
+          Lamp* lamp = nullptr;
+          for (std::size_t k = first_lamp; k < lamps.size(); ++k)
+            if (glm::dot(lamps[k].normal, n) > kSameNormalCosine &&
+                std::abs(lamps[k].offset - offset) < kSamePlaneDistance)
+              lamp = &lamps[k];
+          if (!lamp) {
+            auto [it, added] = circuits.emplace(mat, static_cast<std::uint32_t>(model.circuits.size()));
+            if (added) model.circuits.push_back({"emissive " + model.materials[p.material].name, 1.0});
+            lamps.push_back(
+                {n,
+                 offset,
+                 {},
+                 0.0,
+                 emission[mat],
+                 it->second,
+                 group + "/" + model.materials[p.material].name + "#" + std::to_string(lamps.size())});
+            lamp = &lamps.back();
+          }
+          lamp->points.insert(lamp->points.end(), p.vertices.begin(), p.vertices.end());
+          lamp->area += 0.5 * twice;
+        }
+      }
+      if (p.vertices.size() == 3) ++stats.triangles;
+      model.polygons.push_back(std::move(p));
+      ++stats.faces;
+    }
+  }
+  for (const Lamp& lamp : lamps) model.luminaires.push_back(lamp_luminaire(lamp, options.emission_scale));
+  stats.luminaires = lamps.size();
+  if (model.polygons.empty())
+    throw Error(
+        located(path, 0, "the file has no faces (only points or lines)", "export surfaces, not curves"));
+  if (stats_out) *stats_out = stats;
+  return model;
+}
+
+}  // namespace walk::compiler
