@@ -1,5 +1,6 @@
 #include "compiler/scene/scene_config.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <glm/geometric.hpp>
 
@@ -36,10 +37,14 @@ double positive(const TomlTable& t, const std::string& key, double fallback) {
   return *v;
 }
 
+// Formats import_model reads: DXF (3D), a 2D DXF plan, Quake .map, and meshes through assimp.
+constexpr const char* kFormats[] = {"dxf", "plan", "map", "obj", "gltf", "glb",
+                                    "3ds", "ply",  "dae", "fbx", "stl",  "off"};
+
 void read_model(const TomlTable& root, SceneConfig& cfg) {
   const auto model = root.table("model");
   if (!model) root.fail("model", "missing [model] table with at least `file = \"building.dxf\"`");
-  model->only({"file", "format", "units", "faces"});
+  model->only({"file", "format", "units", "scale", "up", "faces"});
   const auto file = model->string("file");
   if (!file) model->fail("file", "missing: name the building model to import");
   fs::path p(*file);
@@ -48,16 +53,62 @@ void read_model(const TomlTable& root, SceneConfig& cfg) {
   std::string ext = p.extension().string();
   for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   cfg.format = model->string("format").value_or(ext.empty() ? "" : ext.substr(1));
-  if (cfg.format != "dxf")
-    model->fail("format", "format '" + cfg.format + "' is not supported yet (supported: dxf)");
-  const std::string units = model->string("units").value_or("m");
+  if (std::find(std::begin(kFormats), std::end(kFormats), cfg.format) == std::end(kFormats))
+    model->fail("format",
+                "format '" + cfg.format +
+                    "' is not supported (supported: dxf, plan, map, obj, gltf, glb, 3ds, ply, dae, fbx, "
+                    "stl, off)");
+  const std::string units = model->string("units").value_or(cfg.format == "map" ? "quake" : "m");
   const auto scale = metres_per_unit(units);
   if (!scale) model->fail("units", "unknown unit '" + units + "' (known: " + known_units() + ")");
   cfg.metres_per_unit = *scale;
+  cfg.units_given = model->has("units");
+  if (model->has("scale")) {
+    if (cfg.units_given)
+      model->fail("scale", "give either `units` or `scale` (metres per model unit), not both");
+    cfg.metres_per_unit = positive(*model, "scale", 1.0);
+    cfg.units_given = true;
+  }
+  const bool mesh = cfg.format != "dxf" && cfg.format != "plan" && cfg.format != "map";
+  const std::string up = model->string("up").value_or(mesh ? "y" : "z");
+  if (up != "y" && up != "z") model->fail("up", "must be \"y\" or \"z\" (the file's up axis)");
+  cfg.y_up = up == "y";
   const std::string faces = model->string("faces").value_or("inward");
   if (faces != "inward" && faces != "outward")
     model->fail("faces", "must be \"inward\" (faces look into their room) or \"outward\" (EnergyPlus zones)");
   cfg.faces_point_outward = faces == "outward";
+}
+
+void read_plan(const TomlTable& root, SceneConfig& cfg) {
+  const auto t = root.table("plan");
+  if (!t) return;
+  if (cfg.format != "plan") t->fail("wall_height", "[plan] applies only to format = \"plan\"");
+  t->only({"wall_height", "door_height", "door_width", "max_wall_thickness", "min_room_area", "windows"});
+  auto& o = cfg.plan;
+  o.wall_height = positive(*t, "wall_height", o.wall_height);
+  o.door_height = positive(*t, "door_height", o.door_height);
+  if (o.door_height > o.wall_height) t->fail("door_height", "must not exceed wall_height");
+  if (const auto w = t->numbers("door_width", 2)) {
+    o.min_door_width = (*w)[0];
+    o.max_door_width = (*w)[1];
+    if (!(o.min_door_width >= 0.0 && o.max_door_width > o.min_door_width))
+      t->fail("door_width", "give [narrowest, widest] doorway in metres, 0 <= narrowest < widest");
+  }
+  o.max_wall_thickness = positive(*t, "max_wall_thickness", o.max_wall_thickness);
+  o.min_room_area = positive(*t, "min_room_area", o.min_room_area);
+  for (const auto& w : t->array_of_tables("windows")) {
+    w.only({"at", "width", "sill", "head"});
+    PlanWindow win;
+    const auto at = w.numbers("at", 2);
+    if (!at) w.fail("at", "missing: give [x, y] in model units, on or next to the wall");
+    win.at = model::Vec3((*at)[0], (*at)[1], 0.0) * cfg.metres_per_unit;
+    win.width = positive(w, "width", win.width);
+    win.sill = w.number("sill").value_or(win.sill);
+    win.head = positive(w, "head", win.head);
+    if (!(win.sill >= 0.0 && win.head > win.sill && win.head <= o.wall_height))
+      w.fail("head", "need 0 <= sill < head <= wall_height (metres)");
+    o.windows.push_back(win);
+  }
 }
 
 void read_rules(const TomlTable& root, SceneConfig& cfg) {
@@ -191,8 +242,9 @@ SceneConfig load_scene_config(const std::string& path) {
   cfg.path = path;
   const toml::table root_table = parse_toml_file(path, &cfg.text);
   const TomlTable root(root_table, path, "");
-  root.only({"model", "rules", "materials", "luminaires", "circuits", "lighting"});
+  root.only({"model", "plan", "rules", "materials", "luminaires", "circuits", "lighting"});
   read_model(root, cfg);
+  read_plan(root, cfg);
   read_rules(root, cfg);
   read_materials(root, cfg);
   read_luminaires(root, cfg);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/import/plan_builder.hpp"
 #include "model/model.hpp"
 
 namespace walk::compiler {
@@ -54,8 +55,11 @@ struct LightingConfig {
 struct SceneConfig {
   std::string path;        // the config file itself
   std::string model_file;  // absolute, resolved against the config's folder
-  std::string format;      // "dxf"
+  std::string format;      // "dxf", "plan" (2D DXF plan), "map" (Quake), or a mesh format read by assimp
   double metres_per_unit = 1.0;
+  bool units_given = false;  // `units` or `scale` set; otherwise a DXF's $INSUNITS decides
+  bool y_up = false;         // the file's y axis is up (`up = "y"`, the default for meshes); z is up inside
+  PlanOptions plan;          // [plan]: how a 2D floor plan becomes 3D
   bool faces_point_outward = false;  // true: flip every face so it faces into its room (EnergyPlus)
   std::vector<FaceRule> rules;
   std::vector<model::Material> materials;
