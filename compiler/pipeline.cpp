@@ -9,9 +9,10 @@
 #include <fstream>
 #include <glm/geometric.hpp>
 
+#include "compiler/cleanup/cleanup.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/openings.hpp"
-#include "compiler/import/dxf_reader.hpp"
+#include "compiler/import/import_model.hpp"
 #include "compiler/lighting/direct_light.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
@@ -99,10 +100,11 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   CompileResult result;
   auto& stages = result.stages;
   model::Model model;
+  ImportReport imported;
   {
     StageTimer t(stages, "import");
-    model = read_dxf(config.model_file, DxfOptions{config.metres_per_unit});
-    t.done(0, model.polygons.size(), config.model_file);
+    model = import_model(config, &imported);
+    t.done(0, model.polygons.size(), imported.format + ": " + imported.detail);
   }
   {
     StageTimer t(stages, "rules");
@@ -116,6 +118,15 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       throw Error(located(config.model_file, 0,
                           "empty model: no opaque or glass faces after the scene's rules",
                           "check the [[rules]] in " + config.path));
+  }
+  {
+    // After the rules, which drop annotation layers (so they do not set the weld tolerance) and install the
+    // config's materials (the file's own come back after them).
+    StageTimer t(stages, "cleanup");
+    append_imported_materials(model, config, imported);
+    const std::size_t before = model.polygons.size();
+    const CleanupStats s = clean_up(model);
+    t.done(before, model.polygons.size(), s.summary());
   }
   {
     StageTimer t(stages, "recentre");
