@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan) into OUT and runs each for SECONDS on a copy of the
+# committed seed corpus. Exit 0: no crash, no hang (-timeout), no rejection without file and line; 77: no
+# clang with libFuzzer here (the caller skips). Usage: run_fuzzers.sh SOURCE_DIR OUT [SECONDS]
+set -euo pipefail
+src=$1
+out=$2
+seconds=${3:-30}
+cxx=${WALK_FUZZ_CXX:-clang++}
+command -v "$cxx" >/dev/null 2>&1 || { echo "run_fuzzers: $cxx not found"; exit 77; }
+mkdir -p "$out"
+echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, unsigned long) { return 0; }' > "$out/probe.cpp"
+if ! "$cxx" -fsanitize=fuzzer "$out/probe.cpp" -o "$out/probe" 2>/dev/null; then
+  echo "run_fuzzers: $cxx cannot link libFuzzer (install libclang-rt-14-dev)"
+  exit 77
+fi
+flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I"$src"
+       -isystem /usr/include/polyclipping)
+common=("$src"/model/error.cpp "$src"/model/model.cpp)
+dxf=("$src"/compiler/import/dxf_{tokenizer,document,geometry,reader}.cpp)
+map=("$src"/compiler/import/{map_parser,map_reader,brush_geometry,brush_csg}.cpp)
+build() {  # name sources...: rebuilt only when a source is newer than the binary
+  local name=$1
+  shift
+  local stale=0
+  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp; do [ "$f" -nt "$out/$name" ] && stale=1; done
+  [ -x "$out/$name" ] && [ $stale = 0 ] && return 0
+  echo "run_fuzzers: building $name"
+  "$cxx" "${flags[@]}" "$@" -o "$out/$name"
+}
+build dxf_fuzzer "$src"/fuzz/dxf_fuzzer.cpp "${dxf[@]}" "${common[@]}"
+build map_fuzzer "$src"/fuzz/map_fuzzer.cpp "${map[@]}" "${common[@]}"
+status=0
+for kind in dxf map; do
+  corpus="$out/corpus-$kind"
+  mkdir -p "$corpus"
+  cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
+  echo "run_fuzzers: ${kind}_fuzzer for ${seconds} s"
+  if ! (cd "$out" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+        ./${kind}_fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+        -dict="$src/fuzz/$kind.dict" -print_final_stats=1 "$corpus" > "$out/${kind}_fuzzer.log" 2>&1); then
+    echo "run_fuzzers: ${kind}_fuzzer FAILED; the last lines of $out/${kind}_fuzzer.log:"
+    tail -40 "$out/${kind}_fuzzer.log"
+    status=1
+  else
+    grep -E "stat::number_of_executed_units|cov:" "$out/${kind}_fuzzer.log" | tail -2
+  fi
+done
+exit $status
