@@ -5,15 +5,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <memory>
 
 #include "compiler/cleanup/cleanup.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/openings.hpp"
 #include "compiler/import/import_model.hpp"
 #include "compiler/lighting/direct_light.hpp"
+#include "compiler/radiosity/compact_light.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/apply_rules.hpp"
@@ -38,7 +41,9 @@ std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t size) {
 class StageTimer {
  public:
   StageTimer(std::vector<StageReport>& stages, std::string name) : stages_(stages) {
-    stages_.push_back({std::move(name)});
+    StageReport report;
+    report.name = std::move(name);
+    stages_.push_back(std::move(report));
     start_ = std::chrono::steady_clock::now();
   }
   StageReport& report() { return stages_.back(); }
@@ -50,6 +55,12 @@ class StageTimer {
     r.detail = std::move(detail);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     spdlog::info("stage {}: {} -> {} in {:.3f} s {}", r.name, in, out, r.seconds, r.detail);
+  }
+  void reused(std::string why) {
+    stages_.back().reused = true;
+    stages_.back().detail = std::move(why);
+    stages_.back().seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    spdlog::info("stage {}: reused ({})", stages_.back().name, stages_.back().detail);
   }
   void skipped(std::string why) {
     stages_.back().detail = std::move(why);
@@ -75,6 +86,33 @@ model::Polygon panel_polygon(const model::Luminaire& l) {
   return p;
 }
 
+template <typename T>
+std::uint64_t hash_vector(std::uint64_t h, const std::vector<T>& v) {
+  return fnv1a(h, v.data(), v.size() * sizeof(T));
+}
+
+// The light solve depends only on the meshed surfaces, their reflectances, the luminaires and the lighting
+// knobs: hashing exactly these lets a compile that changed anything else (exposure, ambient, cells) reuse it.
+std::uint64_t light_inputs_hash(const model::BundleContents& out, const LightingConfig& l,
+                                std::size_t circuits, std::uint64_t compiler_identity) {
+  std::uint64_t h = compiler_identity;
+  h = hash_vector(h, out.vertices);
+  h = hash_vector(h, out.indices);
+  for (const auto& p : out.polygons) h = fnv1a(h, &p, offsetof(model::PolygonRecord, name));  // not the name
+  for (const auto& l2 : out.luminaires) h = fnv1a(h, &l2, offsetof(model::LuminaireRecord, name));
+  const double knobs[] = {double(l.method), l.grid,     double(l.samples_per_luminaire),
+                          l.rays_per_watt,  l.residual, double(circuits)};
+  h = fnv1a(h, knobs, sizeof knobs);
+  return fnv1a(h, l.ray_caster.data(), l.ray_caster.size());
+}
+
+const model::StageRecord* previous_stage(const model::Bundle* previous, const char* name) {
+  if (!previous) return nullptr;
+  for (const auto& s : previous->stages())
+    if (previous->string(s.name) == name) return &s;
+  return nullptr;
+}
+
 }  // namespace
 
 std::uint64_t hash_file(std::uint64_t h, const std::string& path) {
@@ -87,16 +125,22 @@ std::uint64_t hash_file(std::uint64_t h, const std::string& path) {
   return h;
 }
 
+// The running compiler binary is an input too: any rebuild of the compiler invalidates old bundles, so
+// "up to date" can never hide a compiler change (the revision constant alone relies on people bumping it).
+std::uint64_t compiler_identity() {
+  static const std::uint64_t identity =
+      fnv1a(hash_file(0xcbf29ce484222325ull, "/proc/self/exe"), &kCompilerRevision, sizeof kCompilerRevision);
+  return identity;
+}
+
 std::uint64_t scene_hash(const SceneConfig& config) {
-  // The running compiler binary is an input too: any rebuild of the compiler invalidates old bundles, so
-  // "up to date" can never hide a compiler change (the revision constant alone relies on people bumping it).
-  static const std::uint64_t compiler_identity = hash_file(0xcbf29ce484222325ull, "/proc/self/exe");
-  std::uint64_t h = fnv1a(compiler_identity, &kCompilerRevision, sizeof kCompilerRevision);
+  std::uint64_t h = compiler_identity();
   h = fnv1a(h, config.text.data(), config.text.size());
   return hash_file(h, config.model_file);
 }
 
-CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options) {
+CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options,
+                            const model::Bundle* previous) {
   CompileResult result;
   auto& stages = result.stages;
   model::Model model;
@@ -253,8 +297,16 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   out.light.assign(out.vertices.size() * circuits * 3, 0.0f);
   {
     StageTimer t(stages, "light");
+    const std::uint64_t light_hash = light_inputs_hash(out, config.lighting, circuits, compiler_identity());
+    t.report().input_hash = light_hash;
+    const model::StageRecord* before = previous_stage(previous, "light");
     if (model.luminaires.empty()) {
       t.skipped("no luminaires: display shows ambient light only");
+    } else if (before && before->input_hash == light_hash && before->ran != 0 &&
+               previous->light().size() == out.light.size()) {
+      out.light.assign(previous->light().begin(), previous->light().end());
+      out.polygon_light.assign(previous->polygon_light().begin(), previous->polygon_light().end());
+      t.reused("surfaces, materials, luminaires and lighting knobs unchanged since " + previous->path());
     } else if (config.lighting.method == LightingMethod::Radiosity) {
       std::vector<AreaEmitter> emitters;
       for (std::uint32_t p = 0; p < patches.patches.size(); ++p) {
@@ -268,8 +320,10 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       ro.rays_per_watt = config.lighting.rays_per_watt;
       ro.residual = config.lighting.residual;
       ro.threads = options.threads;
+      ro.caster = config.lighting.ray_caster;
       const RadiosityResult r = solve_radiosity(patches, emitters, {}, circuits, ro);
       out.light = vertex_radiosity(patches, r);
+      out.polygon_light = polygon_radiosity(patches, r, out.polygons.size());
       const auto& s = r.stats;
       t.done(
           patches.patches.size(), s.rays,
@@ -295,6 +349,21 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       t.done(samples.size(), s.shadow_rays,
              fmt::format("direct: {} shadow rays, {} occluded, {} luminaires, {} circuits", s.shadow_rays,
                          s.occluded, model.luminaires.size(), circuits));
+    }
+  }
+
+  CompactLight compact;
+  {
+    StageTimer t(stages, "compact");
+    if (circuits == 0 || model.luminaires.empty()) {
+      t.skipped("no light to compact");
+    } else {
+      compact = compact_light(out.light, out.vertices.size(), circuits);
+      out.compact_colour = compact.colour;
+      out.compact_intensity = compact.intensity;
+      t.done(out.light.size() * sizeof(float), compact.colour.size() * 4 + compact.intensity.size(),
+             fmt::format("error all on {:.2f}% RMS, worst circuit {:.2f}% RMS",
+                         100.0 * compact.rms_error_all_on, 100.0 * compact.worst_circuit_rms));
     }
   }
 
@@ -331,8 +400,9 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     out.materials.push_back(
         {{float(m.reflectance.r), float(m.reflectance.g), float(m.reflectance.b)}, out.add_string(m.name)});
   for (const auto& g : model.groups) out.groups.push_back({out.add_string(g)});
-  for (const auto& c : model.circuits)
-    out.circuits.push_back({out.add_string(c.name), float(c.default_level)});
+  for (std::size_t c = 0; c < model.circuits.size(); ++c)
+    out.circuits.push_back({out.add_string(model.circuits[c].name), float(model.circuits[c].default_level),
+                            compact.scale.empty() ? 0.0f : compact.scale[c]});
   {
     StageTimer t(stages, "cells");
     // Skeleton: one cell holding every drawn polygon. Issue 5 replaces this with the partition and PVS.
@@ -348,23 +418,26 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     t.done(out.polygons.size(), 1, "single cell");
   }
   for (const auto& s : stages)
-    out.stages.push_back(
-        {out.add_string(s.name), s.ran ? 1u : 0u, meta.scene_hash, s.seconds, s.items_in, s.items_out});
+    out.stages.push_back({out.add_string(s.name), s.ran ? 1u : (s.reused ? 2u : 0u),
+                          s.input_hash != 0 ? s.input_hash : meta.scene_hash, s.seconds, s.items_in,
+                          s.items_out});
   return result;
 }
 
 bool compile_to_file(const std::string& config_path, const std::string& output, bool force,
                      std::vector<StageReport>* stages, const CompileOptions& options) {
   const SceneConfig config = load_scene_config(config_path);
-  if (!force && std::filesystem::exists(output)) {
+  std::unique_ptr<model::Bundle> previous;
+  if (std::filesystem::exists(output)) {
     try {
-      const auto existing = model::Bundle::open(output);
-      if (existing->meta().scene_hash == scene_hash(config)) return false;
-    } catch (const Error&) {
-      // An unreadable old bundle is simply rebuilt.
+      previous = model::Bundle::open(output);
+    } catch (const Error& e) {
+      spdlog::info("previous bundle not reusable: {}", e.what());  // an unreadable old bundle is rebuilt
     }
   }
-  CompileResult result = compile_scene(config, options);
+  if (!force && previous && previous->meta().scene_hash == scene_hash(config)) return false;
+  CompileResult result = compile_scene(config, options, force ? nullptr : previous.get());
+  previous.reset();  // unmap before the rename replaces the file
   model::write_bundle(output, result.bundle);
   if (stages) *stages = std::move(result.stages);
   return true;

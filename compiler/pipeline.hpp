@@ -16,6 +16,8 @@ inline constexpr std::uint32_t kCompilerRevision = 1;
 struct StageReport {
   std::string name;
   bool ran = false;
+  bool reused = false;  // not run: its inputs were unchanged, so its output came from the previous bundle
+  std::uint64_t input_hash = 0;
   double seconds = 0.0;
   std::uint64_t items_in = 0;
   std::uint64_t items_out = 0;
@@ -34,7 +36,10 @@ struct CompileResult {
 // Hash of everything the output depends on: config bytes, model file bytes, compiler revision.
 [[nodiscard]] std::uint64_t scene_hash(const SceneConfig& config);
 
-[[nodiscard]] CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options = {});
+// `previous`, when given, is the bundle this compile replaces: a stage whose inputs hash the same as there
+// takes its output from it instead of running again (the light solve, chiefly).
+[[nodiscard]] CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options = {},
+                                          const model::Bundle* previous = nullptr);
 
 // Compiles `config_path` into `output` unless `output` already holds a bundle of the same scene hash
 // (returns false then). Never leaves a partial bundle behind.

@@ -239,6 +239,9 @@ void Bundle::validate() {
   get(section::kCircuits, circuits_, true);
   get(section::kLuminaires, luminaires_, true);
   get(section::kLight, light_, true);
+  get(section::kCompactColour, compact_colour_, false);
+  get(section::kCompactIntensity, compact_intensity_, false);
+  get(section::kPolygonLight, polygon_light_, false);
   get(section::kCells, cells_, true);
   get(section::kNodes, nodes_, true);
   get(section::kPvs, pvs_, true);
@@ -256,6 +259,17 @@ void Bundle::validate() {
     fail("LGHT holds " + std::to_string(light_.size()) + " floats, expected vertices*circuits*3");
   for (float v : light_)
     if (!std::isfinite(v) || v < 0.0f) fail("LGHT holds a negative or non-finite radiosity");
+  if (!compact_colour_.empty() && compact_colour_.size() != vertices_.size())
+    fail("LCOL must hold one colour per vertex");
+  if (!compact_intensity_.empty() && compact_intensity_.size() != vertices_.size() * circuits_.size())
+    fail("LINT must hold one intensity per vertex per circuit");
+  if (compact_colour_.empty() != compact_intensity_.empty()) fail("LCOL and LINT come together");
+  if (!polygon_light_.empty() && polygon_light_.size() != polygons_.size() * circuits_.size() * 3)
+    fail("PLGT must hold polygons*circuits*3 floats");
+  for (float v : polygon_light_)
+    if (!std::isfinite(v) || v < 0.0f) fail("PLGT holds a negative or non-finite radiosity");
+  for (const auto& c : circuits_)
+    if (!std::isfinite(c.compact_scale) || c.compact_scale < 0.0f) fail("CIRC compact scale is invalid");
   if (indices_.size() % 3 != 0) fail("INDX is not a whole number of triangles");
   for (std::uint32_t i : indices_)
     if (i >= vertices_.size())

@@ -23,7 +23,10 @@ struct BundleContents {
   std::vector<GroupRecord> groups;
   std::vector<CircuitRecord> circuits;
   std::vector<LuminaireRecord> luminaires;
-  std::vector<float> light;  // vertices.size() * circuits.size() * 3
+  std::vector<float> light;                                 // vertices.size() * circuits.size() * 3
+  std::vector<std::array<std::uint8_t, 4>> compact_colour;  // empty, or one per vertex
+  std::vector<std::uint8_t> compact_intensity;              // empty, or vertices * circuits
+  std::vector<float> polygon_light;                         // empty, or polygons * circuits * 3
   std::vector<CellRecord> cells;
   std::vector<NodeRecord> nodes;
   std::vector<std::uint32_t> pvs;
@@ -55,6 +58,11 @@ class Bundle {
   [[nodiscard]] std::span<const CircuitRecord> circuits() const { return circuits_; }
   [[nodiscard]] std::span<const LuminaireRecord> luminaires() const { return luminaires_; }
   [[nodiscard]] std::span<const float> light() const { return light_; }
+  [[nodiscard]] std::span<const std::array<std::uint8_t, 4>> compact_colour() const {
+    return compact_colour_;
+  }
+  [[nodiscard]] std::span<const std::uint8_t> compact_intensity() const { return compact_intensity_; }
+  [[nodiscard]] std::span<const float> polygon_light() const { return polygon_light_; }
   [[nodiscard]] std::span<const CellRecord> cells() const { return cells_; }
   [[nodiscard]] std::span<const NodeRecord> nodes() const { return nodes_; }
   [[nodiscard]] std::span<const std::uint32_t> pvs() const { return pvs_; }
@@ -81,6 +89,9 @@ class Bundle {
   std::span<const CircuitRecord> circuits_;
   std::span<const LuminaireRecord> luminaires_;
   std::span<const float> light_;
+  std::span<const std::array<std::uint8_t, 4>> compact_colour_;
+  std::span<const std::uint8_t> compact_intensity_;
+  std::span<const float> polygon_light_;
   std::span<const CellRecord> cells_;
   std::span<const NodeRecord> nodes_;
   std::span<const std::uint32_t> pvs_;

@@ -8,7 +8,7 @@
 namespace walk::model {
 
 inline constexpr std::array<char, 8> kBundleMagic{'W', 'A', 'L', 'K', 'B', 'N', 'D', 'L'};
-inline constexpr std::uint32_t kBundleVersion = 1;
+inline constexpr std::uint32_t kBundleVersion = 2;
 inline constexpr std::uint64_t kSectionAlignment = 16;
 
 // Tags of the sections, as four ASCII bytes read as a little-endian integer.
@@ -82,6 +82,7 @@ struct GroupRecord {
 struct CircuitRecord {
   std::uint32_t name;
   float default_level;
+  float compact_scale = 0.0f;  // radiosity (W/m2) of compact intensity code 255, see LINT
 };
 
 struct LuminaireRecord {
@@ -133,6 +134,12 @@ inline constexpr std::uint32_t kGroups = tag("GRPS");
 inline constexpr std::uint32_t kCircuits = tag("CIRC");
 inline constexpr std::uint32_t kLuminaires = tag("LUMS");
 inline constexpr std::uint32_t kLight = tag("LGHT");  // float RGB per vertex per circuit: [v][c][3]
+// The paper's compact light form, optional: u8 RGBA average colour per vertex, and u8 per vertex per circuit
+// (square-root coded against CircuitRecord::compact_scale). Radiosity = colour/255 * scale * (code/255)^2.
+inline constexpr std::uint32_t kCompactColour = tag("LCOL");
+inline constexpr std::uint32_t kCompactIntensity = tag("LINT");
+// Coarse display while moving, optional: float RGB per polygon per circuit, the area mean of its patches.
+inline constexpr std::uint32_t kPolygonLight = tag("PLGT");
 inline constexpr std::uint32_t kCells = tag("CELL");
 inline constexpr std::uint32_t kNodes = tag("NODE");
 inline constexpr std::uint32_t kPvs = tag("PVSL");  // polygon indices, per cell ranges

@@ -151,15 +151,23 @@ int run_bench(const std::string& which, bool quick, unsigned threads, const std:
   if (!plot.empty()) {
     const std::string data_path = plot + ".csv";
     std::ofstream(data_path) << csv.str();
-    const std::string script = "set terminal pngcairo size 1000,600; set output '" + plot +
-                               "'; set datafile separator ','; set logscale xy; set key outside; "
-                               "set xlabel 'solve seconds'; set ylabel 'display RMS error (of mean)'; "
-                               "set title 'Radiosity: accuracy against time (walk bench radiosity)'; "
-                               "plot for [s in 'cornell house'] for [g in '0.2 0.1 0.05 0.8 0.4'] '" +
-                               data_path +
-                               "' using (strcol(1) eq s && $2 == g+0 ? $6 : 1/0):7 with linespoints "
-                               "title s.' grid '.g.' m'";
-    const std::string command = "gnuplot -e \"" + script + "\"";
+    // Each grid of each scene is one line of error against solve time (log-log).
+    std::ostringstream script;
+    script << "set terminal pngcairo size 1000,600\nset output '" << plot << "'\nset datafile separator ','\n"
+           << "set logscale xy\nset key outside\nset xlabel 'solve seconds'\n"
+           << "set ylabel 'display RMS error (fraction of mean)'\n"
+           << "set title 'Radiosity accuracy against time (walk bench radiosity)'\nplot ";
+    bool first = true;
+    for (const auto& sweep : sweeps)
+      for (double grid : sweep.grids) {
+        script << (first ? "" : ", ") << "'" << data_path << "' using ((strcol(1) eq '" << sweep.scene
+               << "' && abs($2 - " << grid << ") < 1e-9) ? $6 : 1/0):7 with linespoints title '"
+               << sweep.scene << " " << grid << " m'";
+        first = false;
+      }
+    const std::string script_path = plot + ".gp";
+    std::ofstream(script_path) << script.str() << "\n";
+    const std::string command = "gnuplot '" + script_path + "'";
     if (std::system(command.c_str()) != 0)
       std::fprintf(stderr, "gnuplot failed; the CSV is in %s\n", data_path.c_str());
   }

@@ -31,7 +31,8 @@ void add_compile_command(CLI::App& app, int& exit_code) {
     double total = 0.0;
     std::printf("%-11s %-4s %9s %10s %10s  %s\n", "stage", "ran", "seconds", "in", "out", "detail");
     for (const auto& s : stages) {
-      std::printf("%-11s %-4s %9.3f %10llu %10llu  %s\n", s.name.c_str(), s.ran ? "yes" : "no", s.seconds,
+      std::printf("%-11s %-4s %9.3f %10llu %10llu  %s\n", s.name.c_str(),
+                  s.ran ? "yes" : (s.reused ? "kept" : "no"), s.seconds,
                   static_cast<unsigned long long>(s.items_in), static_cast<unsigned long long>(s.items_out),
                   s.detail.c_str());
       total += s.seconds;

@@ -32,8 +32,8 @@ int inspect(const std::string& path, bool list) {
   std::printf("stages:\n");
   for (const auto& s : b->stages())
     std::printf("  %-11s %-8s %8.3f s  in %llu out %llu\n", std::string(b->string(s.name)).c_str(),
-                s.ran ? "ran" : "skipped", s.seconds, static_cast<unsigned long long>(s.items_in),
-                static_cast<unsigned long long>(s.items_out));
+                s.ran == 1 ? "ran" : (s.ran == 2 ? "reused" : "skipped"), s.seconds,
+                static_cast<unsigned long long>(s.items_in), static_cast<unsigned long long>(s.items_out));
   if (list) {
     std::printf("circuits:\n");
     for (std::size_t c = 0; c < b->circuits().size(); ++c) {

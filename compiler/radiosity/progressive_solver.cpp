@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "compiler/radiosity/sampling.hpp"
-#include "compiler/raycast/triangle_bvh.hpp"
+#include "compiler/raycast/ray_caster.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -85,7 +85,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     const auto& p = set.patches[i];
     triangles.push_back({set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]], i});
   }
-  const TriangleBvh bvh(std::move(triangles));
+  const auto caster = make_ray_caster(options.caster, triangles);
 
   std::vector<double> unshot(P * K, 0.0);
   for (const auto& e : area) {
@@ -147,14 +147,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
             }
             dir = cosine_direction(p.normal, u1, u2);
           }
-          const auto hit = bvh.closest_facing(origin, dir, 0.0, INFINITY, kTieDistance);
+          Ray ray{origin, dir, 0.0};
+          const RayHit hit = caster->closest(ray);
           std::int32_t out = kEscaped;
-          if (hit) {
-            const Triangle& tri = bvh.triangles()[hit->triangle];
-            out = glm::dot(set.patches[tri.polygon].normal, dir) < 0.0
-                      ? static_cast<std::int32_t>(tri.polygon)
-                      : kBackFace;
-          }
+          if (hit.hit()) out = hit.front ? static_cast<std::int32_t>(hit.polygon) : kBackFace;
           hits[s.first_ray + r] = out;
         }
       }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "compiler/radiosity/patch_set.hpp"
@@ -42,6 +43,7 @@ struct RadiosityOptions {
   unsigned threads = 2;
   std::uint64_t seed = 1;
   std::uint64_t max_rays = 2'000'000'000;  // safety stop
+  std::string caster = "axial";            // ray caster by name (compiler/raycast/ray_caster.hpp)
 };
 
 struct RadiosityStats {

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <glm/geometric.hpp>
 
+#include "compiler/raycast/ray_caster.hpp"
 #include "compiler/scene/toml_access.hpp"
 #include "compiler/scene/units.hpp"
 #include "model/error.hpp"
@@ -211,7 +212,8 @@ void read_circuits(const TomlTable& root, SceneConfig& cfg) {
 void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("lighting");
   if (!t) return;
-  t->only({"method", "grid", "samples_per_luminaire", "rays_per_watt", "residual", "ambient", "exposure"});
+  t->only({"method", "grid", "samples_per_luminaire", "rays_per_watt", "residual", "ambient", "exposure",
+           "ray_caster"});
   auto& l = cfg.lighting;
   if (const auto m = t->string("method")) {
     if (*m == "radiosity")
@@ -232,6 +234,15 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   if (l.residual >= 1.0) t->fail("residual", "must be below 1 (a fraction of the emitted power)");
   l.ambient = t->number("ambient").value_or(l.ambient);
   if (l.ambient < 0.0) t->fail("ambient", "must not be negative");
+  if (const auto caster = t->string("ray_caster")) {
+    const auto names = ray_caster_names();
+    if (std::find(names.begin(), names.end(), *caster) == names.end()) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+      t->fail("ray_caster", "unknown ray caster '" + *caster + "' (this build has: " + known + ")");
+    }
+    l.ray_caster = *caster;
+  }
   if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);
 }
 

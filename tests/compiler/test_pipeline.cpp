@@ -1,12 +1,14 @@
 // The whole display compiler on the real EnergyPlus house: what the bundle holds is computed, not faked.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 
 #include "compiler/pipeline.hpp"
+#include "compiler/radiosity/compact_light.hpp"
 #include "model/error.hpp"
 
 namespace walk::compiler {
@@ -87,6 +89,66 @@ TEST_F(PipelineTest, SecondCompileIsSkippedWhenNothingChanged) {
   EXPECT_TRUE(compile_to_file(kHouseScene, out, true));
   const auto bundle = model::Bundle::open(out);
   EXPECT_EQ(bundle->meta().scene_hash, scene_hash(load_scene_config(kHouseScene)));
+}
+
+TEST_F(PipelineTest, LightIsReusedUnlessItsInputsChange) {
+  const std::string model = std::string(WALK_SHARED_DATA) + "/eplus-house-doors/house.dxf";
+  const std::string out = (dir_ / "house.walk").string();
+  auto stage = [](const std::vector<StageReport>& stages, const std::string& name) {
+    for (const auto& s : stages)
+      if (s.name == name) return s;
+    return StageReport{};
+  };
+  std::vector<StageReport> stages;
+  ASSERT_TRUE(compile_to_file(scene_for(model), out, false, &stages));
+  EXPECT_TRUE(stage(stages, "light").ran);
+  const auto first = model::Bundle::open(out);
+  const std::vector<float> light(first->light().begin(), first->light().end());
+
+  // Display-only knobs changed: the solve is kept, byte for byte.
+  std::ifstream in(dir_ / "scene.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  text.replace(text.find("ambient = "), text.find('\n', text.find("ambient = ")) - text.find("ambient = "),
+               "ambient = 0.5");
+  std::ofstream(dir_ / "scene.toml") << text;
+  ASSERT_TRUE(compile_to_file((dir_ / "scene.toml").string(), out, false, &stages));
+  EXPECT_FALSE(stage(stages, "light").ran);
+  EXPECT_TRUE(stage(stages, "light").reused);
+  const auto second = model::Bundle::open(out);
+  EXPECT_TRUE(std::equal(light.begin(), light.end(), second->light().begin(), second->light().end()));
+  EXPECT_FLOAT_EQ(second->meta().ambient, 0.5f);
+
+  // A reflectance changed: the light must be solved again.
+  text.replace(text.find("reflectance = [0.72"), 19, "reflectance = [0.70");
+  std::ofstream(dir_ / "scene.toml") << text;
+  ASSERT_TRUE(compile_to_file((dir_ / "scene.toml").string(), out, false, &stages));
+  EXPECT_TRUE(stage(stages, "light").ran);
+}
+
+TEST_F(PipelineTest, CompactLightIsStoredWithItsMeasuredError) {
+  const CompileResult r = compile_scene(load_scene_config(kHouseScene));
+  const auto& b = r.bundle;
+  ASSERT_EQ(b.compact_colour.size(), b.vertices.size());
+  ASSERT_EQ(b.compact_intensity.size(), b.vertices.size() * b.circuits.size());
+  ASSERT_EQ(b.polygon_light.size(), b.polygons.size() * b.circuits.size() * 3);
+  // The compact form keeps the all-on picture within a few percent (one colour per vertex, 8-bit codes).
+  const CompactLight c = compact_light(b.light, b.vertices.size(), b.circuits.size());
+  EXPECT_LT(c.rms_error_all_on, 0.05);
+  EXPECT_GT(c.rms_error_all_on, 0.0);  // lossy: a zero would mean the error is not measured
+  for (std::size_t i = 0; i < b.circuits.size(); ++i)
+    EXPECT_FLOAT_EQ(b.circuits[i].compact_scale, c.scale[i]);
+}
+
+TEST(CompactLight, GreyLightOfOneCircuitRoundTripsWithinQuantisation) {
+  std::vector<float> light;
+  for (int v = 0; v < 1000; ++v) light.insert(light.end(), 3, float(v) / 999.0f * 50.0f);
+  const CompactLight c = compact_light(light, 1000, 1);
+  const auto back = expand_compact(c, 1000, 1);
+  for (std::size_t i = 0; i < light.size(); ++i) {
+    // Square-root coding: step at value x is about 2*sqrt(x*scale)/255; half a step is the worst error.
+    const double step = 2.0 * std::sqrt(light[i] * 50.0) / 255.0 + 50.0 / (255.0 * 255.0);
+    EXPECT_NEAR(back[i], light[i], 0.5 * step + 1e-4) << i;
+  }
 }
 
 TEST_F(PipelineTest, BrokenModelLeavesNoBundle) {
