@@ -18,23 +18,34 @@ AxialCaster::AxialCaster(std::span<const Triangle> triangles)
       planes_(local_, axial_),
       bsp_(local_, not_taken(axial_)) {
   std::vector<std::uint8_t>().swap(axial_);
+  bsp_first_ = bsp_.stats().triangles > planes_.stats().triangles;
 }
 
 RayHit AxialCaster::closest(const Ray& ray) const {
+  if (!valid_ray(ray)) return {};
   RayHit best;
   const model::Vec3 o = ray.origin - local_.centre;
   const double tmin = std::max(ray.tmin, 0.0);
   const double tie = tie_tolerance(ray.dir);
-  planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
-  if (!bsp_.empty()) bsp_.closest(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax, tie, best);
+  if (bsp_first_) {
+    if (!bsp_.empty()) bsp_.closest(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax, tie, best);
+    planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
+  } else {
+    planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
+    if (!bsp_.empty()) bsp_.closest(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax, tie, best);
+  }
   return best;
 }
 
 bool AxialCaster::occluded(const Ray& ray) const {
+  if (!valid_ray(ray)) return false;
   const model::Vec3 o = ray.origin - local_.centre;
   const double tmin = std::max(ray.tmin, 0.0);
-  if (planes_.occluded(o, ray.dir, tmin, ray.tmax)) return true;
-  return !bsp_.empty() && bsp_.occluded(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax);
+  const auto in_bsp = [&] {
+    return !bsp_.empty() && bsp_.occluded(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax);
+  };
+  if (bsp_first_) return in_bsp() || planes_.occluded(o, ray.dir, tmin, ray.tmax);
+  return planes_.occluded(o, ray.dir, tmin, ray.tmax) || in_bsp();
 }
 
 std::size_t AxialCaster::memory_bytes() const {

@@ -1,6 +1,7 @@
 #pragma once
 // The paper's ray caster: axial polygons in sorted planes (AxialPlanes), the rest in a BSP tree (PolygonBsp)
-// searched only up to the axial hit.
+// searched only up to the axial hit. When the BSP holds most of the model (a sculpted, non-axial mesh) the
+// order turns round: the BSP first, and the plane walk stops at its hit.
 #include "compiler/raycast/axial_planes.hpp"
 #include "compiler/raycast/polygon_bsp.hpp"
 
@@ -22,6 +23,7 @@ class AxialCaster final : public RayCaster {
   std::vector<std::uint8_t> axial_;  // per triangle: taken by the planes (build scratch, then freed)
   AxialPlanes planes_;
   PolygonBsp bsp_;
+  bool bsp_first_ = false;
 };
 
 }  // namespace walk::compiler

@@ -16,8 +16,16 @@ constexpr std::uint32_t kMaxGridSide = 1024;
 // their common bounding rectangle (normals are unit vectors; 1e-12 is a few thousand ulp).
 constexpr double kOppositeEdge = 1e-12;
 
+// A plane joins the structure only when it holds at least this many polygons or this fraction of the model's
+// cross-section in polygon area: every ray crossing a plane's coordinate pays a step, so the many small
+// axial faces of a sculpted mesh (mouldings, furniture) are cheaper in the BSP. A building's walls and
+// floors pass easily (the house's smallest kept plane holds a door).
+constexpr std::size_t kPlaneMinElements = 32;
+constexpr double kPlaneMinAreaFraction = 0.01;
+
 struct Raw {
   double coord;
+  double area;
   std::uint32_t triangle;
   int edge_count = 0;
   double u0, u1, v0, v1;
@@ -33,10 +41,30 @@ std::uint32_t cell_of(double x, double x0, double inv, std::uint32_t n) {
   return std::min(n - 1, static_cast<std::uint32_t>(std::min(f, 4.0e9)));
 }
 
+// First index whose coordinate is >= x (kUpper: > x), without branches: the walk does three of these per ray.
+template <bool kUpper>
+std::ptrdiff_t bound(const std::vector<double>& coords, double x) {
+  const double* base = coords.data();
+  std::size_t n = coords.size();
+  while (n > 1) {
+    const std::size_t half = n / 2;
+    base = (kUpper ? !(x < base[half]) : base[half] < x) ? base + half : base;
+    n -= half;
+  }
+  return (base - coords.data()) + ((kUpper ? !(x < *base) : *base < x) ? 1 : 0);
+}
+
 }  // namespace
 
 AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& taken) {
   std::vector<Raw> raw[3];
+  model::Bounds bounds;
+  for (const auto& t : lt.triangles) {
+    bounds.add(t.a);
+    bounds.add(t.b);
+    bounds.add(t.c);
+  }
+  const model::Vec3 extent = bounds.empty() ? model::Vec3(0.0) : bounds.size();
   for (std::uint32_t i = 0; i < lt.triangles.size(); ++i) {
     const Triangle& t = lt.triangles[i];
     int k = -1;
@@ -51,6 +79,7 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
     if (area2 == 0.0 || !std::isfinite(area2)) continue;  // degenerate: no ray can hit it
     Raw r{};
     r.coord = t.a[k];
+    r.area = 0.5 * std::abs(area2);
     r.triangle = i;
     r.polygon = t.polygon;
     r.sign = area2 > 0.0 ? 1 : -1;
@@ -79,6 +108,15 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
     for (std::size_t first = 0; first < list.size();) {
       std::size_t last = first;
       while (last < list.size() && list[last].coord == list[first].coord) ++last;
+      double area = 0.0;
+      for (std::size_t i = first; i < last; ++i) area += list[i].area;
+      const int u = (k + 1) % 3, v = (k + 2) % 3;
+      if (last - first < kPlaneMinElements && area < kPlaneMinAreaFraction * extent[u] * extent[v]) {
+        for (std::size_t i = first; i < last; ++i) taken[list[i].triangle] = 0;  // left to the BSP
+        ++stats_.planes_left;
+        first = last;
+        continue;
+      }
 
       // Two right triangles of one polygon on either side of their bounding rectangle's diagonal: one
       // rectangle, tested by its bounds alone.
@@ -106,7 +144,7 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
       Plane p{};
       p.u0 = p.v0 = INFINITY;
       p.u1 = p.v1 = -INFINITY;
-      const auto element_first = static_cast<std::uint32_t>(elements_.size());
+      std::vector<Element> elements;
       for (std::size_t i = first; i < last; ++i) {
         const Raw& r = list[i];
         ++stats_.triangles;
@@ -121,14 +159,14 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
                   r.triangle,
                   r.polygon};
         for (int j = 0; j < r.edge_count; ++j) edges_.push_back({r.nu[j], r.nv[j], r.c[j]});
-        elements_.push_back(e);
+        elements.push_back(e);
         p.u0 = std::min(p.u0, r.u0);
         p.u1 = std::max(p.u1, r.u1);
         p.v0 = std::min(p.v0, r.v0);
         p.v1 = std::max(p.v1, r.v1);
       }
-      const auto element_last = static_cast<std::uint32_t>(elements_.size());
-      const std::size_t m = element_last - element_first;
+      const std::size_t m = elements.size();
+      stats_.elements += m;
       p.nu = p.nv = 1;
       if (m > kDirectList) {
         const double w = p.u1 - p.u0, h = p.v1 - p.v0, target = kCellsPerElement * static_cast<double>(m);
@@ -151,14 +189,13 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
         for (std::uint32_t iv = iv0; iv <= iv1; ++iv)
           for (std::uint32_t iu = iu0; iu <= iu1; ++iu) fn(std::size_t{iv} * p.nu + iu);
       };
-      for (std::uint32_t i = element_first; i < element_last; ++i)
-        each_cell(elements_[i], [&](std::size_t c) { ++count[c + 1]; });
+      for (const auto& e : elements) each_cell(e, [&](std::size_t c) { ++count[c + 1]; });
       for (std::size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
-      const auto base = static_cast<std::uint32_t>(cell_items_.size());
+      const auto base = static_cast<std::uint32_t>(cell_elements_.size());
       for (std::size_t c = 0; c <= cells; ++c) cell_start_.push_back(base + count[c]);
-      cell_items_.resize(base + count[cells]);
-      for (std::uint32_t i = element_first; i < element_last; ++i)
-        each_cell(elements_[i], [&](std::size_t c) { cell_items_[base + count[c]++] = i; });
+      cell_elements_.resize(base + count[cells]);
+      for (const auto& e : elements)
+        each_cell(e, [&](std::size_t c) { cell_elements_[base + count[c]++] = e; });
       stats_.cells += cells;
 
       coords_[k].push_back(list[first].coord);
@@ -167,8 +204,7 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
     }
     stats_.planes[k] = planes_[k].size();
   }
-  stats_.elements = elements_.size();
-  stats_.cell_entries = cell_items_.size();
+  stats_.cell_entries = cell_elements_.size();
 }
 
 template <bool kAny>
@@ -187,11 +223,11 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
     inv[k] = 1.0 / d[k];
     const double start = o[k] + std::max(tmin, 0.0) * d[k];
     if (d[k] > 0.0) {
-      index[k] = std::lower_bound(coords.begin(), coords.end(), start) - coords.begin();
+      index[k] = bound<false>(coords, start);
       end[k] = static_cast<std::ptrdiff_t>(coords.size());
       step[k] = 1;
     } else {
-      index[k] = (std::upper_bound(coords.begin(), coords.end(), start) - coords.begin()) - 1;
+      index[k] = bound<true>(coords, start) - 1;
       end[k] = -1;
       step[k] = -1;
     }
@@ -216,7 +252,7 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
     const std::uint32_t cell =
         p.cell_first + cell_of(pv, p.v0, p.inv_dv, p.nv) * p.nu + cell_of(pu, p.u0, p.inv_du, p.nu);
     for (std::uint32_t c = cell_start_[cell]; c < cell_start_[cell + 1]; ++c) {
-      const Element& e = elements_[cell_items_[c]];
+      const Element& e = cell_elements_[c];
       if (pu < e.u0 || pu > e.u1 || pv < e.v0 || pv > e.v1) continue;
       bool inside = true;
       for (std::uint32_t j = e.edge_first; j < e.edge_first + e.edge_count; ++j) {
@@ -250,8 +286,8 @@ bool AxialPlanes::occluded(const model::Vec3& origin, const model::Vec3& dir, do
 }
 
 std::size_t AxialPlanes::memory_bytes() const {
-  std::size_t bytes = elements_.capacity() * sizeof(Element) + edges_.capacity() * sizeof(EdgeLine) +
-                      (cell_start_.capacity() + cell_items_.capacity()) * sizeof(std::uint32_t);
+  std::size_t bytes = cell_elements_.capacity() * sizeof(Element) + edges_.capacity() * sizeof(EdgeLine) +
+                      cell_start_.capacity() * sizeof(std::uint32_t);
   for (int k = 0; k < 3; ++k)
     bytes += coords_[k].capacity() * sizeof(double) + planes_[k].capacity() * sizeof(Plane);
   return bytes;

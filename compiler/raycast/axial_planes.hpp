@@ -28,11 +28,13 @@ class AxialPlanes {
     std::size_t elements = 0;    // 2D elements after merging triangle pairs into rectangles
     std::size_t rectangles = 0;  // of which merged rectangles (no edge tests at all)
     std::size_t planes[3] = {0, 0, 0};
+    std::size_t planes_left = 0;  // small planes whose triangles were left to the BSP
     std::size_t cells = 0;
-    std::size_t cell_entries = 0;
+    std::size_t cell_entries = 0;  // element copies in all cells
   };
 
-  // Takes every triangle whose three vertices share one coordinate exactly; marks them in `taken`.
+  // Takes the triangles whose three vertices share one coordinate exactly, in planes big enough to be worth a
+  // step of the walk; marks them in `taken`.
   AxialPlanes(const LocalTriangles& triangles, std::vector<std::uint8_t>& taken);
 
   // Improves `best` with the closest axial hit in (tmin, min(tmax, best.t + tie)); origin is local.
@@ -69,10 +71,11 @@ class AxialPlanes {
 
   std::vector<double> coords_[3];  // sorted plane coordinates per axis
   std::vector<Plane> planes_[3];
-  std::vector<Element> elements_;
   std::vector<EdgeLine> edges_;
   std::vector<std::uint32_t> cell_start_;
-  std::vector<std::uint32_t> cell_items_;  // element indices
+  // Each cell's elements copied in place: a lookup reads one contiguous run, with no index to chase (the
+  // walk is bound by memory latency on big buildings).
+  std::vector<Element> cell_elements_;
   Stats stats_;
 };
 

@@ -11,12 +11,14 @@ namespace {
 constexpr std::size_t kLeafSize = 4;
 constexpr int kMaxDepth = 56;
 // Splitting planes tried per node: planes of this many polygons spread through the node's list, plus the
-// three axis planes through the node's centre.
+// nine axis planes.
 constexpr std::size_t kCandidates = 8;
 // Candidates are scored on at most this many of the node's polygons.
 constexpr std::size_t kScoreSample = 256;
-// A straddler costs a reference on both sides and a test on either; weigh it against imbalance.
-constexpr double kStraddleCost = 3.0;
+// Cost of visiting a node, in triangle tests (surface-area heuristic).
+constexpr double kTraversalCost = 1.0;
+// Nodes with more polygons than this are split even when the cost estimate does not ask for it.
+constexpr std::size_t kMaxLeaf = 16;
 // A vertex closer than this to a plane lies in it (1 nm, as kEdgeSlack); it also widens the ray intervals
 // on either side of a split so that rounding near the plane never skips the side holding the hit.
 constexpr double kPlaneEps = 1e-9;
@@ -34,11 +36,16 @@ Side classify(const Triangle& t, const model::Vec3& tn, const model::Vec3& n, do
   return kStraddle;
 }
 
-bool slab(const model::Vec3& lo, const model::Vec3& hi, const model::Vec3& o, const model::Vec3& d,
-          double& t0, double& t1) {
+double half_area(const model::Vec3& lo, const model::Vec3& hi) {
+  const model::Vec3 d = glm::max(hi - lo, model::Vec3(0.0));
+  return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+// `inv` is 1/dir per axis, computed once per ray.
+inline bool slab(const model::Vec3& lo, const model::Vec3& hi, const model::Vec3& o, const model::Vec3& inv,
+                 double& t0, double& t1) {
   for (int a = 0; a < 3; ++a) {
-    const double inv = 1.0 / d[a];
-    double n = (lo[a] - o[a]) * inv, f = (hi[a] - o[a]) * inv;
+    double n = (lo[a] - o[a]) * inv[a], f = (hi[a] - o[a]) * inv[a];
     if (n > f) std::swap(n, f);
     if (!std::isnan(n)) t0 = std::max(t0, n);  // NaN: origin on the slab face of a parallel ray
     if (!std::isnan(f)) t1 = std::min(t1, f);
@@ -78,7 +85,7 @@ std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
     return index;
   }
 
-  // Candidate planes: some polygons' own planes and the axis planes through the centre.
+  // Candidate planes: some polygons' own planes and axis planes at a quarter, half and three quarters.
   std::vector<std::pair<model::Vec3, double>> candidates;
   for (std::size_t j = 0; j < kCandidates && j < ids.size(); ++j) {
     const auto i = ids[j * ids.size() / std::min(kCandidates, ids.size())];
@@ -87,28 +94,48 @@ std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
     const model::Vec3 n = tris_->normals[i] / len;
     candidates.emplace_back(n, glm::dot(n, tris[i].a));
   }
-  const model::Vec3 centre = (lo + hi) * 0.5;
   for (int a = 0; a < 3; ++a) {
     model::Vec3 n(0.0);
     n[a] = 1.0;
-    candidates.emplace_back(n, centre[a]);
+    for (const double f : {0.25, 0.5, 0.75}) candidates.emplace_back(n, lo[a] + f * (hi[a] - lo[a]));
   }
+  // Surface-area cost: the chance that a ray through this node visits a child is the ratio of their
+  // surface areas; it tests the child's polygons then. Straddlers count on both sides.
   const std::size_t stride = std::max<std::size_t>(1, ids.size() / kScoreSample);
-  double best_score = INFINITY;
+  const double node_area = half_area(lo, hi);
+  double best_cost = INFINITY;
+  std::size_t sampled = 0;
   int best = -1;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
-    std::size_t count[4] = {0, 0, 0, 0}, sampled = 0;
-    for (std::size_t j = 0; j < ids.size(); j += stride, ++sampled)
-      ++count[classify(tris[ids[j]], tris_->normals[ids[j]], candidates[c].first, candidates[c].second)];
-    if (count[kFront] == 0 || count[kBack] == 0) continue;  // no progress
-    const double score = std::abs(static_cast<double>(count[kFront]) - static_cast<double>(count[kBack])) +
-                         kStraddleCost * static_cast<double>(count[kStraddle]);
-    if (score < best_score) {
-      best_score = score;
+    model::Vec3 flo(INFINITY), fhi(-INFINITY), blo(INFINITY), bhi(-INFINITY);
+    std::size_t nf = 0, nb = 0;
+    sampled = 0;
+    for (std::size_t j = 0; j < ids.size(); j += stride, ++sampled) {
+      const Triangle& t = tris[ids[j]];
+      const Side side = classify(t, tris_->normals[ids[j]], candidates[c].first, candidates[c].second);
+      const model::Vec3 tlo = glm::min(t.a, glm::min(t.b, t.c)), thi = glm::max(t.a, glm::max(t.b, t.c));
+      if (side != kBack) {
+        ++nf;
+        flo = glm::min(flo, tlo);
+        fhi = glm::max(fhi, thi);
+      }
+      if (side == kBack || side == kStraddle) {
+        ++nb;
+        blo = glm::min(blo, tlo);
+        bhi = glm::max(bhi, thi);
+      }
+    }
+    if (nf == sampled || nb == sampled) continue;  // everything on one side: no progress
+    const double cost = kTraversalCost + (half_area(flo, fhi) * static_cast<double>(nf) +
+                                          half_area(blo, bhi) * static_cast<double>(nb)) /
+                                             std::max(node_area, 1e-300);
+    if (cost < best_cost) {
+      best_cost = cost;
       best = static_cast<int>(c);
     }
   }
-  if (best < 0) {
+  // A leaf when no split is expected to test fewer polygons than the leaf would (up to kMaxLeaf).
+  if (best < 0 || (best_cost >= static_cast<double>(sampled) && ids.size() <= kMaxLeaf)) {
     keep_here(ids);
     return index;
   }
@@ -161,13 +188,14 @@ bool PolygonBsp::search(const ShearedRay& ray, const model::Vec3& dir, double tm
   if (!kAny && best->hit()) limit = std::min(limit, best->t + tie);
   stack[top++] = {0, tmin, limit};
   const model::Vec3& o = ray.origin;
+  const model::Vec3 inv(1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z);
   const auto& tris = tris_->triangles;
   while (top > 0) {
     const Entry e = stack[--top];
     double t0 = e.t0, t1 = std::min(e.t1, limit);
     if (t0 > t1) continue;
     const Node& n = nodes_[e.node];
-    if (!slab(n.lo, n.hi, o, dir, t0, t1)) continue;
+    if (!slab(n.lo, n.hi, o, inv, t0, t1)) continue;
     for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
       const std::uint32_t i = items_[j];
       double t = 0.0;

@@ -1,10 +1,10 @@
 #pragma once
 // A BSP tree over the polygons that are not axial, as the paper keeps them: each node splits space by the
-// plane of one of its polygons or an axis plane through its centre (chosen among a sample for balance and few
-// straddlers); polygons go to the side they lie on (polygons in the plane to the side they face), straddlers
-// to both (referenced, not clipped, so no new slivers); polygons live in the leaves. Each node also keeps the
-// bounds of what lies below it, so a ray skips empty space.
-// Searched front to back, the search stops once it is beyond the best hit so far (the axial hit).
+// plane of one of its polygons or an axis plane (chosen among a sample by the surface-area cost, which
+// weighs balance, straddlers and empty space); polygons go to the side they lie on (polygons in the plane to
+// the side they face), straddlers to both (referenced, not clipped, so no new slivers); polygons live in the
+// leaves. Each node also keeps the bounds of what lies below it, so a ray skips empty space. Searched front
+// to back, the search stops once it is beyond the best hit so far (the axial hit).
 #include <cstdint>
 #include <vector>
 
