@@ -26,6 +26,7 @@ BvhCaster::BvhCaster(std::span<const Triangle> triangles)
 }
 
 RayHit BvhCaster::closest(const Ray& ray) const {
+  if (!valid_ray(ray)) return {};
   const auto h = bvh_.closest(ray.origin - centre_, ray.dir, ray.tmin, ray.tmax);
   if (!h) return {};
   const std::uint32_t i = bvh_.triangles()[h->triangle].polygon;
@@ -33,6 +34,7 @@ RayHit BvhCaster::closest(const Ray& ray) const {
 }
 
 bool BvhCaster::occluded(const Ray& ray) const {
+  if (!valid_ray(ray)) return false;
   return bvh_.occluded(ray.origin - centre_, ray.dir, ray.tmin, ray.tmax);
 }
 

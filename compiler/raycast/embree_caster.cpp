@@ -63,6 +63,7 @@ class EmbreeCaster final : public RayCaster {
   [[nodiscard]] std::string_view name() const override { return "embree"; }
 
   [[nodiscard]] RayHit closest(const Ray& ray) const override {
+    if (!valid_ray(ray)) return {};
     RTCRayHit rh{};
     fill(ray, rh.ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -75,6 +76,7 @@ class EmbreeCaster final : public RayCaster {
   }
 
   [[nodiscard]] bool occluded(const Ray& ray) const override {
+    if (!valid_ray(ray)) return false;
     RTCRay r{};
     fill(ray, r);
     RTCIntersectContext ctx;

@@ -63,6 +63,15 @@ struct RayHit {
   return len > 0.0 ? kSelfHitDistance / len : 0.0;
 }
 
+// Finite origin and direction, direction not zero: other rays hit nothing in every backend.
+[[nodiscard]] inline bool valid_ray(const Ray& r) {
+  const auto& o = r.origin;
+  const auto& d = r.dir;
+  return std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z) && std::isfinite(d.x) &&
+         std::isfinite(d.y) && std::isfinite(d.z) && (d.x != 0.0 || d.y != 0.0 || d.z != 0.0) &&
+         !std::isnan(r.tmin) && !std::isnan(r.tmax);
+}
+
 // kTieDistance in units of a ray's t.
 [[nodiscard]] inline double tie_tolerance(const model::Vec3& dir) {
   const double len = std::sqrt(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z);
