@@ -1,5 +1,6 @@
 #include "compiler/import/brush_csg.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 
@@ -43,9 +44,9 @@ bool clip_outside(const std::vector<Vec3>& fragment, const BrushPlane& face_plan
 }  // namespace
 
 std::vector<CsgFace> csg_faces(const std::vector<ConvexBrush>& brushes, const std::vector<bool>& hides,
-                               CsgStats& stats) {
+                               CsgStats& stats, std::size_t output_count) {
   std::vector<CsgFace> result;
-  for (std::size_t i = 0; i < brushes.size(); ++i) {
+  for (std::size_t i = 0; i < std::min(brushes.size(), output_count); ++i) {
     const ConvexBrush& a = brushes[i];
     std::vector<std::size_t> near;
     for (std::size_t j = 0; j < brushes.size(); ++j)

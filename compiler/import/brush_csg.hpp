@@ -3,6 +3,7 @@
 // touch a neighbour's face back to back disappear (both are hidden); of two coincident faces facing the same
 // way only the earlier brush's stays (later brushes take precedence, as in qbsp).
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "compiler/import/brush_geometry.hpp"
@@ -23,7 +24,9 @@ struct CsgStats {
 };
 
 // `hides[i]`: brush i hides what is inside it (solid); non-solid brushes (liquids) are clipped but clip none.
+// Only brushes [0, output_count) produce faces: the rest only hide (the world around a door entity).
 [[nodiscard]] std::vector<CsgFace> csg_faces(const std::vector<ConvexBrush>& brushes,
-                                             const std::vector<bool>& hides, CsgStats& stats);
+                                             const std::vector<bool>& hides, CsgStats& stats,
+                                             std::size_t output_count = SIZE_MAX);
 
 }  // namespace walk::compiler

@@ -153,6 +153,8 @@ model::Model read_map_text(const std::string& text, const std::string& file, con
       lights.targets[e.get("targetname")] = o;
   }
   std::size_t index = 0;
+  std::vector<ConvexBrush> world;  // the worldspawn's brushes, once built (it is the first entity)
+  std::vector<bool> world_solid;
   for (const auto& e : map.entities) {
     ++stats.entities;
     const std::string classname = e.get("classname");
@@ -191,7 +193,31 @@ model::Model read_map_text(const std::string& text, const std::string& file, con
       ++stats.brushes_built;
       if (kind == Kind::Door) ++stats.door_brushes;
     }
-    for (auto& f : csg_faces(brushes, solid, stats.csg)) {
+    // Entities other than the world (doors, platforms, walls) are also clipped by the world's solid brushes
+    // around them (listed after theirs, so the world's face wins where both lie on one plane): a door's faces
+    // against its frame, floor and lintel disappear, and only its faces in the doorway stay.
+    const std::size_t own = brushes.size();
+    if (kind == Kind::World) {
+      world = brushes;
+      world_solid = solid;
+    } else {
+      model::Bounds box;
+      for (const auto& b : brushes) {
+        box.add(b.bounds.min);
+        box.add(b.bounds.max);
+      }
+      for (std::size_t w = 0; w < world.size(); ++w) {
+        if (!world_solid[w] || box.empty()) continue;
+        bool apart = false;
+        for (int k = 0; k < 3; ++k)
+          apart = apart || world[w].bounds.max[k] < box.min[k] - kClipEpsilon ||
+                  box.max[k] < world[w].bounds.min[k] - kClipEpsilon;
+        if (apart) continue;
+        brushes.push_back(world[w]);
+        solid.push_back(true);
+      }
+    }
+    for (auto& f : csg_faces(brushes, solid, stats.csg, own)) {
       const MapPlane& plane = sources[f.brush]->planes[brushes[f.brush].faces[f.face].plane];
       const std::string tex = lower(plane.texture);
       model::Polygon p;
