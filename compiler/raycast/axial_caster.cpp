@@ -19,6 +19,10 @@ AxialCaster::AxialCaster(std::span<const Triangle> triangles)
       bsp_(local_, not_taken(axial_)) {
   std::vector<std::uint8_t>().swap(axial_);
   bsp_first_ = bsp_.stats().triangles > planes_.stats().triangles;
+  if (bsp_.empty()) {  // only the BSP reads the triangles after the build
+    std::vector<Triangle>().swap(local_.triangles);
+    std::vector<model::Vec3>().swap(local_.normals);
+  }
 }
 
 RayHit AxialCaster::closest(const Ray& ray) const {

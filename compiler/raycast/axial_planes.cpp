@@ -41,6 +41,10 @@ std::uint32_t cell_of(double x, double x0, double inv, std::uint32_t n) {
   return std::min(n - 1, static_cast<std::uint32_t>(std::min(f, 4.0e9)));
 }
 
+// The plane's own (u, v) axes for each axis k: (k + 1) % 3 and (k + 2) % 3.
+constexpr int kU[3] = {1, 2, 0};
+constexpr int kV[3] = {2, 0, 1};
+
 // First index whose coordinate is >= x (kUpper: > x), without branches: the walk does three of these per ray.
 template <bool kUpper>
 std::ptrdiff_t bound(const std::vector<double>& coords, double x) {
@@ -141,7 +145,10 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
         ++h;
       }
 
-      Plane p{};
+      struct {
+        double u0, u1, v0, v1, inv_du, inv_dv;
+        std::uint32_t nu, nv, cell_first;
+      } p{};
       p.u0 = p.v0 = INFINITY;
       p.u1 = p.v1 = -INFINITY;
       std::vector<Element> elements;
@@ -199,10 +206,11 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
       stats_.cells += cells;
 
       coords_[k].push_back(list[first].coord);
-      planes_[k].push_back(p);
+      bounds_[k].push_back({list[first].coord, p.u0, p.u1, p.v0, p.v1});
+      grids_[k].push_back({p.inv_du, p.inv_dv, p.nu, p.nv, p.cell_first});
       first = last;
     }
-    stats_.planes[k] = planes_[k].size();
+    stats_.planes[k] = bounds_[k].size();
   }
   stats_.cell_entries = cell_elements_.size();
 }
@@ -241,16 +249,17 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
     if (!(t < limit)) break;
     const std::ptrdiff_t pi = index[k];
     index[k] += step[k];
-    next_t[k] = index[k] != end[k] ? (coords_[k][index[k]] - o[k]) * inv[k] : INFINITY;
+    next_t[k] = index[k] != end[k] ? (bounds_[k][index[k]].coord - o[k]) * inv[k] : INFINITY;
     if (!(t > tmin)) continue;
 
-    const Plane& p = planes_[k][pi];
-    const int u = k == 2 ? 0 : k + 1, v = k == 0 ? 2 : (k == 1 ? 0 : 1);
+    const PlaneBounds& b = bounds_[k][pi];
+    const int u = kU[k], v = kV[k];
     const double pu = o[u] + t * d[u];
     const double pv = o[v] + t * d[v];
-    if (pu < p.u0 || pu > p.u1 || pv < p.v0 || pv > p.v1) continue;
+    if (pu < b.u0 || pu > b.u1 || pv < b.v0 || pv > b.v1) continue;
+    const PlaneGrid& p = grids_[k][pi];
     const std::uint32_t cell =
-        p.cell_first + cell_of(pv, p.v0, p.inv_dv, p.nv) * p.nu + cell_of(pu, p.u0, p.inv_du, p.nu);
+        p.cell_first + cell_of(pv, b.v0, p.inv_dv, p.nv) * p.nu + cell_of(pu, b.u0, p.inv_du, p.nu);
     for (std::uint32_t c = cell_start_[cell]; c < cell_start_[cell + 1]; ++c) {
       const Element& e = cell_elements_[c];
       if (pu < e.u0 || pu > e.u1 || pv < e.v0 || pv > e.v1) continue;
@@ -289,7 +298,8 @@ std::size_t AxialPlanes::memory_bytes() const {
   std::size_t bytes = cell_elements_.capacity() * sizeof(Element) + edges_.capacity() * sizeof(EdgeLine) +
                       cell_start_.capacity() * sizeof(std::uint32_t);
   for (int k = 0; k < 3; ++k)
-    bytes += coords_[k].capacity() * sizeof(double) + planes_[k].capacity() * sizeof(Plane);
+    bytes += coords_[k].capacity() * sizeof(double) + bounds_[k].capacity() * sizeof(PlaneBounds) +
+             grids_[k].capacity() * sizeof(PlaneGrid);
   return bytes;
 }
 

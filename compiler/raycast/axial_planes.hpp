@@ -58,8 +58,11 @@ class AxialPlanes {
   struct EdgeLine {  // inside when nu*u + nv*v + c >= 0; (nu, nv) unit length, c widened by kEdgeSlack
     double nu, nv, c;
   };
-  struct Plane {
-    double u0, u1, v0, v1;     // bounds of its elements
+  struct PlaneBounds {  // what every step of the walk reads, in one 40-byte record
+    double coord;
+    double u0, u1, v0, v1;  // bounds of its elements
+  };
+  struct PlaneGrid {           // read only when the point falls inside the bounds
     double inv_du, inv_dv;     // cells per metre
     std::uint32_t nu, nv;      // grid size
     std::uint32_t cell_first;  // into cell_start_: nu*nv + 1 entries
@@ -69,8 +72,9 @@ class AxialPlanes {
   bool walk(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
             RayHit* best) const;
 
-  std::vector<double> coords_[3];  // sorted plane coordinates per axis
-  std::vector<Plane> planes_[3];
+  std::vector<double> coords_[3];  // sorted plane coordinates per axis, for the binary search
+  std::vector<PlaneBounds> bounds_[3];
+  std::vector<PlaneGrid> grids_[3];
   std::vector<EdgeLine> edges_;
   std::vector<std::uint32_t> cell_start_;
   // Each cell's elements copied in place: a lookup reads one contiguous run, with no index to chase (the

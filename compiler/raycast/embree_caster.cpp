@@ -51,6 +51,10 @@ class EmbreeCaster final : public RayCaster {
     rtcAttachGeometry(scene_, geom);
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene_);
+    // Keep only what hits report: polygon ids and normals (28 bytes a triangle, not the vertices).
+    polygon_.reserve(n);
+    for (const auto& t : local_.triangles) polygon_.push_back(t.polygon);
+    std::vector<Triangle>().swap(local_.triangles);
     if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw Error("embree: scene build failed");
   }
   ~EmbreeCaster() override {
@@ -72,7 +76,7 @@ class EmbreeCaster final : public RayCaster {
     rtcIntersect1(scene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
     const std::uint32_t i = rh.hit.primID;
-    return {rh.ray.tfar, i, local_.triangles[i].polygon, local_.front(i, ray.dir)};
+    return {rh.ray.tfar, i, polygon_[i], local_.front(i, ray.dir)};
   }
 
   [[nodiscard]] bool occluded(const Ray& ray) const override {
@@ -86,7 +90,7 @@ class EmbreeCaster final : public RayCaster {
   }
 
   [[nodiscard]] std::size_t memory_bytes() const override {
-    return static_cast<std::size_t>(bytes_.load()) + local_.memory_bytes();
+    return static_cast<std::size_t>(bytes_.load()) + local_.memory_bytes() + polygon_.capacity() * 4;
   }
 
  private:
@@ -104,7 +108,8 @@ class EmbreeCaster final : public RayCaster {
     r.flags = 0;
   }
 
-  LocalTriangles local_;  // for polygon ids and facing
+  LocalTriangles local_;  // centre and normals (facing); its triangles are dropped after the build
+  std::vector<std::uint32_t> polygon_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::atomic<std::int64_t> bytes_{0};
