@@ -39,7 +39,8 @@ inline double segment_distance(const model::Vec3& p, const model::Vec3& a, const
 // the hit 1e-6 m along the ray (occlusion rays between two points of one wall lie in its plane).
 inline constexpr double kGrazing = 1e-4;
 
-// Is the answer `h` ill-conditioned: its hit point within kEdgeCheck of an edge of its triangle, or the ray
+// Is the answer `h` ill-conditioned: its hit point within kEdgeCheck of an edge of its polygon (of any
+// triangle of it: the axial planes report a rectangle merged from two triangles by one of them), or the ray
 // grazing the triangle? Casters that round differently may then disagree, and both are right.
 inline bool near_edge(std::span<const Triangle> tris, const Ray& r, const RayHit& h) {
   if (!h.hit()) return false;
@@ -50,8 +51,17 @@ inline bool near_edge(std::span<const Triangle> tris, const Ray& r, const RayHit
   const double nn = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   const double dd = std::sqrt(r.dir.x * r.dir.x + r.dir.y * r.dir.y + r.dir.z * r.dir.z);
   if (std::abs(n.x * r.dir.x + n.y * r.dir.y + n.z * r.dir.z) <= kGrazing * nn * dd) return true;
-  return std::min({segment_distance(p, t.a, t.b), segment_distance(p, t.b, t.c),
-                   segment_distance(p, t.c, t.a)}) <= kEdgeCheck;
+  // Triangles of one polygon are consecutive in every model here; look 64 either side.
+  const std::size_t lo = h.triangle >= 64 ? h.triangle - 64 : 0,
+                    hi = std::min(tris.size(), std::size_t{h.triangle} + 65);
+  for (std::size_t i = lo; i < hi; ++i) {
+    const Triangle& q = tris[i];
+    if (q.polygon != t.polygon) continue;
+    if (std::min({segment_distance(p, q.a, q.b), segment_distance(p, q.b, q.c),
+                  segment_distance(p, q.c, q.a)}) <= kEdgeCheck)
+      return true;
+  }
+  return false;
 }
 
 // Same polygon (or a tie) at the same distance?

@@ -77,6 +77,7 @@ TEST_P(RayModels, AgreeWithReference) {
 INSTANTIATE_TEST_SUITE_P(Shared, RayModels,
                          ::testing::Values(Case{"house", 1000000, 0}, Case{"office", 1000000, 0},
                                            Case{"cornell", 1000000, 0}, Case{"tower", 4000, 1000000},
+                                           Case{"e1m1", 4000, 1000000}, Case{"dm1", 4000, 1000000},
                                            Case{"sibenik", 2000, 1000000}, Case{"conference", 1000, 1000000}),
                          [](const auto& info) { return std::string(info.param.model); });
 
