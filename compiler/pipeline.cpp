@@ -10,6 +10,7 @@
 #include <fstream>
 #include <glm/geometric.hpp>
 #include <memory>
+#include <numbers>
 
 #include "compiler/cleanup/cleanup.hpp"
 #include "compiler/geometry/mesher.hpp"
@@ -93,7 +94,8 @@ std::uint64_t hash_vector(std::uint64_t h, const std::vector<T>& v) {
 
 // The light solve depends only on the meshed surfaces, their reflectances, the luminaires and the lighting
 // knobs: hashing exactly these lets a compile that changed anything else (exposure, ambient, cells) reuse it.
-std::uint64_t light_inputs_hash(const model::BundleContents& out, const LightingConfig& l,
+std::uint64_t light_inputs_hash(const model::BundleContents& out,
+                                const std::vector<model::Luminaire>& luminaires, const LightingConfig& l,
                                 std::size_t circuits, std::uint64_t compiler_identity) {
   std::uint64_t h = compiler_identity;
   h = hash_vector(h, out.vertices);
@@ -103,6 +105,11 @@ std::uint64_t light_inputs_hash(const model::BundleContents& out, const Lighting
   const double knobs[] = {double(l.method), l.grid,     double(l.samples_per_luminaire),
                           l.rays_per_watt,  l.residual, double(circuits)};
   h = fnv1a(h, knobs, sizeof knobs);
+  for (const auto& lum : luminaires) {  // what the bundle's records leave out
+    const double shape[] = {double(lum.kind), lum.cone,       lum.exponent,
+                            lum.position.x,   lum.position.y, lum.position.z};
+    h = fnv1a(h, shape, sizeof shape);
+  }
   return fnv1a(h, l.ray_caster.data(), l.ray_caster.size());
 }
 
@@ -183,7 +190,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       for (auto& hole : p.holes)
         for (auto& v : hole) v -= model.origin;
     }
-    t.done(model.polygons.size(), model.polygons.size());
+    for (auto& l : model.luminaires) l.position -= model.origin;  // imported lights move with the geometry
+    t.done(model.polygons.size() + model.luminaires.size(), model.polygons.size() + model.luminaires.size());
   }
   {
     StageTimer t(stages, "openings");
@@ -220,8 +228,14 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   PatchSet patches;  // vertices numbered as the bundle's, in double precision
   {
     StageTimer t(stages, "mesh");
+    // Area luminaires are drawn as the panels they are; point and spot lights have no surface.
     std::vector<model::Polygon> panels;
-    for (const auto& l : model.luminaires) panels.push_back(panel_polygon(l));
+    std::vector<std::uint32_t> panel_luminaire;
+    for (std::uint32_t i = 0; i < model.luminaires.size(); ++i) {
+      if (model.luminaires[i].kind != model::LuminaireKind::Area) continue;
+      panels.push_back(panel_polygon(model.luminaires[i]));
+      panel_luminaire.push_back(i);
+    }
     auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire) {
       const PolygonMesh mesh =
           mesh_polygon(poly, poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid);
@@ -287,7 +301,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     }
     for (const auto& p : model.polygons)
       if (drawn(p.role)) emit(p, UINT32_MAX);
-    for (std::uint32_t i = 0; i < panels.size(); ++i) emit(panels[i], i);
+    for (std::uint32_t i = 0; i < panels.size(); ++i) emit(panels[i], panel_luminaire[i]);
     t.done(model.polygons.size() + panels.size(), out.polygons.size(),
            fmt::format("{} vertices {} triangles grid {} m", out.vertices.size(), out.indices.size() / 3,
                        config.lighting.grid));
@@ -297,7 +311,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   out.light.assign(out.vertices.size() * circuits * 3, 0.0f);
   {
     StageTimer t(stages, "light");
-    const std::uint64_t light_hash = light_inputs_hash(out, config.lighting, circuits, compiler_identity());
+    const std::uint64_t light_hash =
+        light_inputs_hash(out, model.luminaires, config.lighting, circuits, compiler_identity());
     t.report().input_hash = light_hash;
     const model::StageRecord* before = previous_stage(previous, "light");
     if (model.luminaires.empty()) {
@@ -316,12 +331,19 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
           emitters.push_back({p, l.circuit, l.power / (l.width * l.height)});
         }
       }
+      std::vector<PointEmitter> points;
+      for (const auto& l : model.luminaires) {
+        if (l.kind == model::LuminaireKind::Area) continue;
+        points.push_back({l.position, l.normal,
+                          l.kind == model::LuminaireKind::Spot ? l.cone : std::numbers::pi,
+                          l.kind == model::LuminaireKind::Spot ? l.exponent : 0.0, l.power, l.circuit});
+      }
       RadiosityOptions ro;
       ro.rays_per_watt = config.lighting.rays_per_watt;
       ro.residual = config.lighting.residual;
       ro.threads = options.threads;
       ro.caster = config.lighting.ray_caster;
-      const RadiosityResult r = solve_radiosity(patches, emitters, {}, circuits, ro);
+      const RadiosityResult r = solve_radiosity(patches, emitters, points, circuits, ro);
       out.light = vertex_radiosity(patches, r);
       out.polygon_light = polygon_radiosity(patches, r, out.polygons.size());
       const auto& s = r.stats;

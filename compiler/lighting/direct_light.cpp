@@ -1,5 +1,6 @@
 #include "compiler/lighting/direct_light.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -32,6 +33,41 @@ void panel_points(const model::Luminaire& l, int n, std::mt19937_64& rng, std::v
   }
 }
 
+// Radiant intensity per watt of a point light towards unit direction `w` (W/sr per W): uniform over the
+// sphere, or cos^n about the axis inside the cone, normalised so the light emits exactly its power.
+double intensity_per_watt(const model::Luminaire& l, const model::Vec3& w) {
+  const double cone =
+      l.kind == model::LuminaireKind::Spot ? std::min(l.cone, std::numbers::pi) : std::numbers::pi;
+  const double n = l.kind == model::LuminaireKind::Spot ? l.exponent : 0.0;
+  const double c = glm::dot(glm::normalize(l.normal), w);
+  const double cos_cone = std::cos(cone);
+  if (c < cos_cone) return 0.0;
+  if (n <= 0.0) return 1.0 / (2.0 * std::numbers::pi * (1.0 - cos_cone));
+  const double lo = std::max(cos_cone, 0.0);
+  if (c <= 0.0) return 0.0;
+  // Integral of cos^n over the cone's solid angle: 2 pi (1 - lo^(n+1)) / (n+1).
+  return std::pow(c, n) * (n + 1.0) / (2.0 * std::numbers::pi * (1.0 - std::pow(lo, n + 1.0)));
+}
+
+void add_point_light(const SurfaceSample& p, const model::Vec3& origin, const model::Luminaire& l,
+                     const TriangleBvh& occluders, std::size_t circuit_count, float* out, std::uint64_t& rays,
+                     std::uint64_t& blocked) {
+  const model::Vec3 d = l.position - origin;
+  const double r2 = std::max(glm::dot(d, d), kMinDistanceSquared);
+  const double r = std::sqrt(r2);
+  const double cos_r = glm::dot(p.normal, d) / r;
+  if (cos_r <= 0.0) return;
+  const double intensity = intensity_per_watt(l, -d / r);
+  if (intensity <= 0.0) return;
+  ++rays;
+  if (occluders.occluded(origin, d, 0.0, 1.0)) {
+    ++blocked;
+    return;
+  }
+  float* b = out + l.circuit * 3;
+  for (int c = 0; c < 3; ++c) b[c] += static_cast<float>(p.albedo[c] * l.power[c] * intensity * cos_r / r2);
+}
+
 }  // namespace
 
 std::vector<float> direct_light(std::span<const SurfaceSample> samples,
@@ -54,6 +90,11 @@ std::vector<float> direct_light(std::span<const SurfaceSample> samples,
         std::mt19937_64 rng(0x9e3779b97f4a7c15ull ^ s);  // per sample: same result for any thread count
         const model::Vec3 origin = p.position + p.normal * kShadowOffset;
         for (const auto& l : luminaires) {
+          if (l.kind != model::LuminaireKind::Area) {
+            add_point_light(p, origin, l, occluders, circuit_count, &out[s * circuit_count * 3], my_rays,
+                            my_blocked);
+            continue;
+          }
           const model::Vec3 ln = glm::normalize(l.normal);
           if (glm::dot(p.position - l.position, ln) <= 0.0) continue;  // behind the panel
           panel_points(l, options.samples_per_luminaire, rng, points);

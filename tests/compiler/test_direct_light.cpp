@@ -65,3 +65,35 @@ TEST(DirectLight, ResultDoesNotDependOnThreadCount) {
 
 }  // namespace
 }  // namespace walk::compiler
+
+namespace walk::compiler {
+namespace {
+
+TEST(DirectLight, PointAndSpotFollowTheInverseSquareLaw) {
+  const SurfaceSample s{{0, 0, 0}, {0, 0, 1}, {0.5, 0.5, 0.5}};
+  const TriangleBvh empty({});
+  model::Luminaire point;
+  point.kind = model::LuminaireKind::Point;
+  point.position = {0, 0, 2};
+  point.power = model::Rgb(100.0);
+  const auto b = direct_light({&s, 1}, {point}, 1, empty, {1, 1});
+  const double isotropic = 0.5 * 100.0 / (4.0 * std::numbers::pi * 4.0);  // rho * Phi / (4 pi r^2)
+  // Shadow rays start 0.1 mm off the surface, so r is 0.1 mm short: 1e-4 relative at 2 m, plus float output.
+  constexpr double kOffsetError = 2e-4;
+  EXPECT_NEAR(b[0], isotropic, kOffsetError * isotropic);
+
+  // A 30-degree spot pointing down concentrates the same power into its cone: more light below it, none
+  // outside the cone.
+  model::Luminaire spot = point;
+  spot.kind = model::LuminaireKind::Spot;
+  spot.normal = {0, 0, -1};
+  spot.cone = std::numbers::pi / 6.0;
+  const auto below = direct_light({&s, 1}, {spot}, 1, empty, {1, 1});
+  const double uniform_cone = 0.5 * 100.0 / (2.0 * std::numbers::pi * (1.0 - std::cos(spot.cone)) * 4.0);
+  EXPECT_NEAR(below[0], uniform_cone, kOffsetError * uniform_cone);
+  const SurfaceSample aside{{3, 0, 0}, {0, 0, 1}, {0.5, 0.5, 0.5}};
+  EXPECT_EQ(direct_light({&aside, 1}, {spot}, 1, empty, {1, 1})[0], 0.0f);
+}
+
+}  // namespace
+}  // namespace walk::compiler
