@@ -12,7 +12,7 @@ Framebuffer::~Framebuffer() {
 
 void Framebuffer::release() {
   if (fbo_) glDeleteFramebuffers(1, &fbo_);
-  if (colour_) glDeleteRenderbuffers(1, &colour_);
+  if (colour_) glDeleteTextures(1, &colour_);
   if (depth_) glDeleteRenderbuffers(1, &depth_);
   fbo_ = colour_ = depth_ = 0;
   width_ = height_ = 0;
@@ -26,16 +26,20 @@ void Framebuffer::ensure_size(int width, int height) {
     throw Error("frame size " + std::to_string(width) + "x" + std::to_string(height) +
                 " is outside what this GL supports (1.." + std::to_string(max_size) + " per side)");
   release();
-  glGenRenderbuffers(1, &colour_);
-  glBindRenderbuffer(GL_RENDERBUFFER, colour_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  // A texture rather than a renderbuffer: accumulation (anti-aliasing) reads each jittered frame back in.
+  glGenTextures(1, &colour_);
+  glBindTexture(GL_TEXTURE_2D, colour_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
   glGenRenderbuffers(1, &depth_);
   glBindRenderbuffer(GL_RENDERBUFFER, depth_);
   glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
   glBindRenderbuffer(GL_RENDERBUFFER, 0);
   glGenFramebuffers(1, &fbo_);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_, 0);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {

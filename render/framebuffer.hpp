@@ -1,6 +1,6 @@
 #pragma once
-// The renderer's own target: RGBA8 colour and 24-bit depth renderbuffers. Every backend draws here, so
-// read_pixels is the same code whether or not a window exists.
+// The renderer's own target: an RGBA8 colour texture and a 24-bit depth renderbuffer. Every backend draws
+// here, so read_pixels is the same code whether or not a window exists.
 #include <glad/gl.h>
 
 namespace walk::render {
@@ -15,6 +15,7 @@ class Framebuffer {
   // (Re)allocates when the size changes; throws walk::Error when the driver refuses the attachments.
   void ensure_size(int width, int height);
   [[nodiscard]] GLuint id() const { return fbo_; }
+  [[nodiscard]] GLuint colour_texture() const { return colour_; }
   [[nodiscard]] int width() const { return width_; }
   [[nodiscard]] int height() const { return height_; }
 

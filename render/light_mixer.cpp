@@ -7,22 +7,30 @@ namespace walk::render {
 const char* const kLightMixerVertexShader = R"glsl(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_albedo;
+layout(location = 2) in uint a_polygon;
 uniform mat4 u_view_projection;
-uniform samplerBuffer u_light;
+uniform samplerBuffer u_light;          // per vertex: the radiosity patches
+uniform samplerBuffer u_polygon_light;  // per polygon: the coarse display while moving
+uniform float u_patch_weight;           // 0: coarse, 1: patches, between: the blend after stopping
 uniform int u_circuit_count;
 uniform float u_levels[64];
 uniform float u_ambient;
 out vec3 v_radiosity;
 
-void main() {
-  vec3 radiosity = a_albedo * u_ambient;
-  int base = gl_VertexID * u_circuit_count * 3;
+vec3 mixed(samplerBuffer light, int base) {
+  vec3 sum = vec3(0.0);
   for (int c = 0; c < u_circuit_count; ++c) {
     int i = base + c * 3;
-    vec3 light = vec3(texelFetch(u_light, i).r, texelFetch(u_light, i + 1).r, texelFetch(u_light, i + 2).r);
-    radiosity += u_levels[c] * light;
+    sum += u_levels[c] * vec3(texelFetch(light, i).r, texelFetch(light, i + 1).r, texelFetch(light, i + 2).r);
   }
-  v_radiosity = radiosity;
+  return sum;
+}
+
+void main() {
+  // Each end skips the fetches it does not need: coarse frames read one polygon's values per vertex.
+  vec3 fine = u_patch_weight > 0.0 ? mixed(u_light, gl_VertexID * u_circuit_count * 3) : vec3(0.0);
+  vec3 coarse = u_patch_weight < 1.0 ? mixed(u_polygon_light, int(a_polygon) * u_circuit_count * 3) : vec3(0.0);
+  v_radiosity = a_albedo * u_ambient + mix(coarse, fine, u_patch_weight);
   gl_Position = u_view_projection * vec4(a_position, 1.0);
 }
 )glsl";

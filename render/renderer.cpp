@@ -5,15 +5,20 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <optional>
 #include <string>
 
 #include "model/error.hpp"
+#include "render/accumulator.hpp"
 #include "render/camera.hpp"
+#include "render/diagonals.hpp"
 #include "render/draw_list.hpp"
 #include "render/framebuffer.hpp"
 #include "render/gl_check.hpp"
+#include "render/jitter.hpp"
 #include "render/light_mixer.hpp"
 #include "render/shader.hpp"
 #include "render/tonemap.hpp"
@@ -24,8 +29,9 @@ struct Renderer::Impl {
   const model::Bundle& bundle;
   ShaderProgram program{"scene", kLightMixerVertexShader, kTonemapFragmentShader};
   GLint u_view_projection = -1, u_light = -1, u_circuit_count = -1, u_levels = -1, u_ambient = -1,
-        u_inv_exposure = -1, u_opacity = -1;
-  GLuint vao = 0, vbo = 0, ibo = 0, light_buffer = 0, light_texture = 0;
+        u_inv_exposure = -1, u_opacity = -1, u_polygon_light = -1, u_patch_weight = -1;
+  GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, light_buffer = 0, light_texture = 0,
+         polygon_buffer = 0, polygon_texture = 0;
   Framebuffer framebuffer;
   std::vector<float> levels;
   std::vector<std::optional<DrawList>> cell_lists;  // built on first visit
@@ -33,13 +39,31 @@ struct Renderer::Impl {
   bool culling = true;
   float glass_opacity = 0.25f;
   bool present_to_window = false;
+  bool pvs_culling = true;
   FrameStats stats;
+
+  // Adaptive refinement state: what the picture now shown was made from.
+  std::optional<Accumulator> accumulator;  // made on first use: plain draw() callers never pay for it
+  RefineSchedule schedule;
+  FrameGovernor governor;
+  std::optional<MovingLevel> pinned_level;
+  std::vector<JitterSample> jitter = jitter_pattern(schedule.settings().aa_samples);
+  std::optional<View> shown_view;
+  int shown_width = 0, shown_height = 0;
+  std::vector<float> shown_levels;
+  std::vector<Quad> quads;                     // found on first use
+  std::vector<std::uint32_t> refined_indices;  // INDX with colour-chosen diagonals
+  bool restart = true;  // settings changed or draw() overwrote the picture: start again as if moved
 
   explicit Impl(const model::Bundle& b) : bundle(b) {}
   ~Impl() {
+    glDeleteTextures(1, &polygon_texture);
+    glDeleteBuffers(1, &polygon_buffer);
     glDeleteTextures(1, &light_texture);
     glDeleteBuffers(1, &light_buffer);
     glDeleteBuffers(1, &ibo);
+    glDeleteBuffers(1, &refined_ibo);
+    glDeleteVertexArrays(1, &refined_vao);
     glDeleteBuffers(1, &vbo);
     glDeleteVertexArrays(1, &vao);
   }
@@ -56,7 +80,42 @@ struct Renderer::Impl {
     }
     return *slot;
   }
+
+  void draw_scene(const View& view, int width, int height, const DrawOptions& options);
+  void present(int width, int height) const;
+  void choose_diagonals();
 };
+
+namespace {
+
+// PLGT when the bundle has it; otherwise each polygon's plain mean of its vertices' light, so the coarse
+// level always exists.
+std::vector<float> polygon_light(const model::Bundle& bundle) {
+  const std::size_t circuits = bundle.circuits().size(), n = bundle.polygons().size() * circuits * 3;
+  if (bundle.polygon_light().size() == n)
+    return {bundle.polygon_light().begin(), bundle.polygon_light().end()};
+  std::vector<float> out(n, 0.0f);
+  const auto light = bundle.light();
+  for (std::size_t p = 0; p < bundle.polygons().size(); ++p) {
+    const auto& poly = bundle.polygons()[p];
+    if (poly.vertex_count == 0) continue;
+    for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
+      for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] += light[v * circuits * 3 + k];
+    for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] /= float(poly.vertex_count);
+  }
+  return out;
+}
+
+bool same_view(const View& a, const View& b) {
+  return a.eye == b.eye && a.forward == b.forward && a.up == b.up && a.fov_y_degrees == b.fov_y_degrees &&
+         a.near_plane == b.near_plane && a.far_plane == b.far_plane;
+}
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
 
 Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(bundle)) {
   auto& r = *impl_;
@@ -84,30 +143,46 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   r.u_ambient = r.program.uniform("u_ambient");
   r.u_inv_exposure = r.program.uniform("u_inv_exposure");
   r.u_opacity = r.program.uniform("u_opacity");
+  r.u_patch_weight = r.program.uniform("u_patch_weight");
   // Unused (and so absent) when the shader has no circuits to loop over: not an error then.
   r.u_levels = glGetUniformLocation(r.program.id(), "u_levels[0]");
+  r.u_polygon_light = glGetUniformLocation(r.program.id(), "u_polygon_light");
 
   r.levels.resize(circuits);
   for (std::size_t c = 0; c < circuits; ++c)
     r.levels[c] = std::clamp(bundle.circuits()[c].default_level, 0.0f, 1.0f);
   r.cell_lists.resize(bundle.cells().size());
 
-  // Static geometry: the VERT records are uploaded as they are (stride 40) and never touched again.
-  glGenVertexArrays(1, &r.vao);
-  glBindVertexArray(r.vao);
+  // Static geometry: the VERT records are uploaded as they are (stride 40) and never touched again. A second
+  // VAO shares them with the refined index buffer (same layout as INDX, diagonals chosen by colour).
   glGenBuffers(1, &r.vbo);
   glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size_bytes()), vertices.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
-                        reinterpret_cast<const void*>(offsetof(model::VertexRecord, position)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
-                        reinterpret_cast<const void*>(offsetof(model::VertexRecord, albedo)));
   glGenBuffers(1, &r.ibo);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.ibo);  // recorded in the VAO
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size_bytes()), indices.data(), GL_STATIC_DRAW);
-  glBindVertexArray(0);
+  glBindBuffer(GL_COPY_WRITE_BUFFER,
+               r.ibo);  // no VAO bound yet: upload through a target that is not VAO state
+  glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(indices.size_bytes()), indices.data(), GL_STATIC_DRAW);
+  glGenBuffers(1, &r.refined_ibo);
+  glBindBuffer(GL_COPY_WRITE_BUFFER, r.refined_ibo);
+  glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(indices.size_bytes()), indices.data(), GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  for (auto [vao, ibo] : {std::pair{&r.vao, r.ibo}, std::pair{&r.refined_vao, r.refined_ibo}}) {
+    glGenVertexArrays(1, vao);
+    glBindVertexArray(*vao);
+    glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
+                          reinterpret_cast<const void*>(offsetof(model::VertexRecord, position)));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
+                          reinterpret_cast<const void*>(offsetof(model::VertexRecord, albedo)));
+    // The polygon id selects the coarse (per-polygon) light.
+    glEnableVertexAttribArray(2);
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(model::VertexRecord),
+                           reinterpret_cast<const void*>(offsetof(model::VertexRecord, polygon)));
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);  // recorded in the VAO
+    glBindVertexArray(0);
+  }
 
   // Per-circuit radiosity, in LGHT's own layout; an empty buffer object still makes a valid texture.
   glGenBuffers(1, &r.light_buffer);
@@ -117,6 +192,14 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   glGenTextures(1, &r.light_texture);
   glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.light_buffer);
+  const std::vector<float> coarse = polygon_light(bundle);
+  glGenBuffers(1, &r.polygon_buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, r.polygon_buffer);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<std::size_t>(coarse.size() * sizeof(float), 4)),
+               coarse.empty() ? nullptr : coarse.data(), GL_STATIC_DRAW);
+  glGenTextures(1, &r.polygon_texture);
+  glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.polygon_buffer);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   check_gl("uploading the bundle's buffers");
@@ -129,17 +212,38 @@ void Renderer::set_dimmers(std::span<const float> levels) {
   for (std::size_t c = 0; c < std::min(levels.size(), own.size()); ++c)
     own[c] = std::isnan(levels[c]) ? 0.0f : std::clamp(levels[c], 0.0f, 1.0f);
 }
+// refine() compares the levels with those of the picture shown, so a setter never forces a redraw itself.
 
 std::span<const float> Renderer::dimmers() const {
   return impl_->levels;
 }
 void Renderer::set_backface_culling(bool enabled) {
+  if (impl_->culling != enabled) impl_->restart = true;
   impl_->culling = enabled;
+}
+void Renderer::set_pvs_culling(bool enabled) {
+  if (impl_->pvs_culling != enabled) impl_->restart = true;
+  impl_->pvs_culling = enabled;
+}
+void Renderer::set_refine_settings(const RefineSettings& settings) {
+  impl_->schedule = RefineSchedule(settings);
+  impl_->jitter = jitter_pattern(impl_->schedule.settings().aa_samples);
+  impl_->restart = true;
+}
+void Renderer::set_target_rate(double hz) {
+  impl_->governor = FrameGovernor(hz);
+}
+void Renderer::set_moving_level(std::optional<MovingLevel> level) {
+  impl_->pinned_level = level;
+}
+const FrameGovernor& Renderer::governor() const {
+  return impl_->governor;
 }
 void Renderer::set_present_to_window(bool enabled) {
   impl_->present_to_window = enabled;
 }
 void Renderer::set_glass_opacity(float opacity) {
+  if (impl_->glass_opacity != std::clamp(opacity, 0.0f, 1.0f)) impl_->restart = true;
   impl_->glass_opacity = std::clamp(opacity, 0.0f, 1.0f);
 }
 float Renderer::glass_opacity() const {
@@ -150,8 +254,36 @@ const FrameStats& Renderer::last_stats() const {
 }
 
 void Renderer::draw(const View& view, int width, int height) {
+  draw(view, width, height, DrawOptions{});
+}
+
+void Renderer::draw(const View& view, int width, int height, const DrawOptions& options) {
   auto& r = *impl_;
-  const glm::mat4 view_projection_matrix = view_projection(view, double(width) / double(height));
+  r.draw_scene(view, width, height, options);
+  r.present(width, height);
+  r.restart = true;  // the refined picture, if any, was overwritten
+  r.stats.samples = 1;
+}
+
+void Renderer::Impl::present(int width, int height) const {
+  if (!present_to_window) return;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check_gl("presenting a frame");
+}
+
+void Renderer::Impl::draw_scene(const View& view, int width, int height, const DrawOptions& options) {
+  auto& r = *this;
+  glm::mat4 view_projection_matrix = view_projection(view, double(width) / double(height));
+  if (options.jitter_x != 0.0f || options.jitter_y != 0.0f) {
+    // A translation after projection moves the image by whole NDC units: 2 / size per pixel.
+    const glm::mat4 shift = glm::translate(
+        glm::mat4(1.0f),
+        glm::vec3(2.0f * options.jitter_x / float(width), 2.0f * options.jitter_y / float(height), 0.0f));
+    view_projection_matrix = shift * view_projection_matrix;
+  }
   r.framebuffer.ensure_size(width, height);
 
   // The eye's cell decides what is drawn; without cells (or outside them all) everything is.
@@ -161,7 +293,7 @@ void Renderer::draw(const View& view, int width, int height) {
     cell = r.bundle.locate_cell(eye);
     if (cell >= r.bundle.cells().size()) cell = FrameStats::kNoCell;
   }
-  const DrawList& list = r.list_for(cell);
+  const DrawList& list = r.list_for(r.pvs_culling ? cell : FrameStats::kNoCell);
 
   glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer.id());
   glViewport(0, 0, width, height);
@@ -187,10 +319,15 @@ void Renderer::draw(const View& view, int width, int height) {
       glUniform1fv(r.u_levels, GLsizei(r.levels.size()), r.levels.data());
     glUniform1f(r.u_ambient, meta.ambient);
     glUniform1f(r.u_inv_exposure, meta.exposure > 0.0f ? 1.0f / meta.exposure : 1.0f);
+    glUniform1f(r.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
     glUniform1i(r.u_light, 0);
-    glBindVertexArray(r.vao);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
+    if (r.u_polygon_light >= 0) glUniform1i(r.u_polygon_light, 1);
+    glActiveTexture(GL_TEXTURE0);
+    glBindVertexArray(options.diagonals ? r.refined_vao : r.vao);
     auto draw_batch = [](const DrawBatch& batch) {
       glMultiDrawElements(GL_TRIANGLES, batch.counts.data(), GL_UNSIGNED_INT,
                           reinterpret_cast<const void* const*>(batch.byte_offsets.data()),
@@ -210,14 +347,11 @@ void Renderer::draw(const View& view, int width, int height) {
       glDisable(GL_BLEND);
     }
     glBindVertexArray(0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     glUseProgram(0);
-  }
-
-  if (r.present_to_window) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r.framebuffer.id());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl("drawing a frame");
@@ -226,6 +360,94 @@ void Renderer::draw(const View& view, int width, int height) {
   r.stats.polygons_drawn = list.polygons;
   r.stats.triangles_drawn = list.triangles;
   r.stats.draw_ranges = std::uint32_t(list.opaque.counts.size() + list.glass.counts.size());
+  r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
+  ++r.stats.frames_drawn;
+}
+
+// The mix is computed here exactly as the vertex shader does, once per diagonal choice (not per frame).
+void Renderer::Impl::choose_diagonals() {
+  if (quads.empty()) quads = find_quads(bundle.polygons(), bundle.indices());
+  const auto vertices = bundle.vertices();
+  const auto light = bundle.light();
+  const std::size_t circuits = levels.size();
+  std::vector<glm::vec3> colour(vertices.size());
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    glm::vec3 c{0.0f};
+    for (std::size_t k = 0; k < circuits; ++k) {
+      const float* l = &light[(v * circuits + k) * 3];
+      c += levels[k] * glm::vec3(l[0], l[1], l[2]);
+    }
+    colour[v] = c;
+  }
+  if (refined_indices.empty()) refined_indices.assign(bundle.indices().begin(), bundle.indices().end());
+  stats.quads_flipped = std::uint32_t(render::choose_diagonals(quads, colour, refined_indices));
+  // Through the copy target: the element binding belongs to whichever VAO is bound.
+  glBindBuffer(GL_COPY_WRITE_BUFFER, refined_ibo);
+  glBufferSubData(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(refined_indices.size() * sizeof(std::uint32_t)),
+                  refined_indices.data());
+  glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  check_gl("uploading the chosen diagonals");
+}
+
+bool Renderer::refine(const View& view, int width, int height) {
+  auto& r = *impl_;
+  const bool moved = r.restart || !r.shown_view || !same_view(*r.shown_view, view) ||
+                     width != r.shown_width || height != r.shown_height;
+  const bool relit = r.shown_levels != r.levels;
+  const auto cell_of = [&] {
+    if (r.bundle.cells().empty()) return FrameStats::kNoCell;
+    const double eye[3] = {view.eye.x, view.eye.y, view.eye.z};
+    return r.bundle.locate_cell(eye);
+  };
+  if (moved) {
+    const MovingLevel level = r.pinned_level.value_or(r.governor.choose_moving(cell_of()));
+    r.schedule.view_changed(level == MovingLevel::Patches ? 1.0f : 0.0f);
+  } else if (relit) {
+    r.schedule.light_changed();
+  }
+  r.shown_view = view;
+  r.shown_width = width;
+  r.shown_height = height;
+  r.shown_levels = r.levels;
+  r.restart = false;
+
+  const auto start = std::chrono::steady_clock::now();
+  RefineStep step = r.schedule.next();
+  r.stats.stage = step.stage;
+  if (!step.draws()) return false;  // converged: the picture shown is final, the CPU stays idle
+
+  if (step.stage == RefineStage::Diagonals) r.choose_diagonals();
+  if (step.stage != RefineStage::Accumulating) {
+    r.draw_scene(view, width, height, DrawOptions{step.patch_weight, 0.0f, 0.0f, step.diagonals});
+    r.stats.samples = 1;
+    if (step.stage == RefineStage::Moving) {
+      glFinish();
+      r.governor.record_moving(r.stats.cell,
+                               step.patch_weight > 0.0f ? MovingLevel::Patches : MovingLevel::Coarse,
+                               milliseconds_since(start));
+    }
+  } else {
+    if (!r.accumulator) r.accumulator.emplace();
+    if (step.sample == 0) r.accumulator->reset(width, height);
+    // As many samples as the governor says fit in one frame; the last one drawn ends this step.
+    const int fixed = r.schedule.settings().samples_per_frame;
+    const int budget = fixed > 0 ? fixed : r.governor.samples_per_frame();
+    int drawn = 0;
+    for (;;) {
+      const JitterSample& j = r.jitter[std::size_t(step.sample) % r.jitter.size()];
+      r.draw_scene(view, width, height, DrawOptions{1.0f, j.dx, j.dy, step.diagonals});
+      r.accumulator->add(r.framebuffer.colour_texture(), j.weight);
+      if (++drawn >= budget || r.schedule.stage() != RefineStage::Accumulating) break;
+      step = r.schedule.next();
+    }
+    r.accumulator->resolve(r.framebuffer.id());
+    glFinish();
+    r.governor.record_sample(milliseconds_since(start) / double(drawn));
+    r.stats.samples = r.accumulator->samples();
+    r.stats.stage = RefineStage::Accumulating;
+  }
+  r.present(width, height);
+  return true;
 }
 
 Image Renderer::read_pixels(int width, int height) const {

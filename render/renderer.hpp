@@ -4,11 +4,14 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "model/bundle.hpp"
+#include "render/governor.hpp"
+#include "render/refine_schedule.hpp"
 
 namespace walk::render {
 
@@ -32,6 +35,14 @@ struct Image {
   }
 };
 
+// How one draw() call draws; the defaults are the full-quality single frame.
+struct DrawOptions {
+  float patch_weight = 1.0f;  // 0: flat polygon light (PLGT, the coarse display), 1: per-vertex patches
+  float jitter_x = 0.0f;      // sub-pixel offset of the image, pixels (anti-aliasing samples)
+  float jitter_y = 0.0f;
+  bool diagonals = false;  // quads split along the diagonals last chosen by colour (refine() chooses them)
+};
+
 struct FrameStats {
   static constexpr std::uint32_t kNoCell =
       0xffffffffu;  // no cells, or the eye is outside all of them: all drawn
@@ -39,6 +50,12 @@ struct FrameStats {
   std::uint32_t polygons_drawn = 0;
   std::uint32_t triangles_drawn = 0;
   std::uint32_t draw_ranges = 0;  // glMultiDrawElements entries after merging neighbouring polygons
+  std::uint64_t frames_drawn =
+      0;  // frames this renderer has drawn (draw() calls and refine() steps that drew)
+  RefineStage stage = RefineStage::Moving;  // what the last refine() step did (Idle: drew nothing)
+  float patch_weight = 1.0f;                // of the last frame drawn
+  int samples = 1;                          // samples accumulated in the picture now shown
+  std::uint32_t quads_flipped = 0;  // quads split differently from the bundle at the last diagonal choice
 };
 
 class Renderer {
@@ -61,7 +78,22 @@ class Renderer {
   // (sRGB) values: glass blocks walking, not seeing.
   void set_glass_opacity(float opacity);
   [[nodiscard]] float glass_opacity() const;
+  // Off: every polygon is drawn whatever the eye's cell (for comparison and benchmarks). On by default.
+  void set_pvs_culling(bool enabled);
   void draw(const View& view, int width, int height);
+  void draw(const View& view, int width, int height, const DrawOptions& options);
+
+  // Adaptive refinement, the kiosk's per-frame call: a moving view is drawn at the level the frame-rate
+  // governor picks for the eye's cell; a still view is refined step by step (patches blended in, then
+  // jittered samples accumulated); once converged, nothing is drawn until the view, size, dimmers or settings
+  // change. Returns whether it drew. Times each step with glFinish to feed the governor.
+  bool refine(const View& view, int width, int height);
+  void set_refine_settings(const RefineSettings& settings);
+  // Frame rate the governor holds (default 60).
+  void set_target_rate(double hz);
+  // Pins the moving level instead of letting the governor choose; std::nullopt hands it back.
+  void set_moving_level(std::optional<MovingLevel> level);
+  [[nodiscard]] const FrameGovernor& governor() const;
   [[nodiscard]] Image read_pixels(int width, int height) const;
   [[nodiscard]] const FrameStats& last_stats() const;
 

@@ -46,9 +46,10 @@ struct Builder {
         }
         vr.polygon = id;
         c.vertices.push_back(vr);
+        const double gradient = scene.light_gradient ? 0.4 + 1.2 * double(i) / n : 1.0;
         for (int ci = 0; ci < scene.circuits; ++ci)
           for (int k = 0; k < 3; ++k)
-            c.light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor) : 0.0f);
+            c.light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor * gradient) : 0.0f);
       }
     const std::uint32_t b = p.first_vertex, row = std::uint32_t(n + 1);
     for (std::uint32_t j = 0; j < std::uint32_t(n); ++j)
@@ -112,6 +113,25 @@ model::BundleContents make_two_rooms(const TwoRooms& scene) {
   for (int k = 0; k < 3; ++k) {
     c.meta.bounds_min[k] = 0.0f;
     c.meta.bounds_max[k] = k == 0 ? 8.0f : k == 1 ? 4.0f : 3.0f;
+  }
+  if (scene.four_cells) {
+    // Room A's shared-wall pieces are polygons 5..7, room B's the last three (see room()).
+    auto pvs_without = [&](std::uint32_t first, std::uint32_t count) {
+      const auto start = std::uint32_t(c.pvs.size());
+      for (std::uint32_t i = 0; i < total; ++i)
+        if (i < first || i >= first + count) c.pvs.push_back(i);
+      return std::pair{start, std::uint32_t(c.pvs.size()) - start};
+    };
+    const auto [a_first, a_count] = pvs_without(total - 3, 3);
+    const auto [b_first, b_count] = pvs_without(5, 3);
+    c.nodes.push_back({{-1.0, 0.0, 0.0, 4.0}, 1, 2});  // front: x < 4, room A
+    c.nodes.push_back({{0.0, -1.0, 0.0, 2.0}, -1, -2});
+    c.nodes.push_back({{0.0, -1.0, 0.0, 2.0}, -3, -4});
+    c.cells.push_back({{0, 0, 0}, {4, 2, 3}, a_first, a_count});
+    c.cells.push_back({{0, 2, 0}, {4, 4, 3}, a_first, a_count});
+    c.cells.push_back({{4, 0, 0}, {8, 2, 3}, b_first, b_count});
+    c.cells.push_back({{4, 2, 0}, {8, 4, 3}, b_first, b_count});
+    return c;
   }
   // Cell A: x < 4 (plane -x + 4 >= 0 is front), cell B: the rest.
   c.nodes.push_back({{-1.0, 0.0, 0.0, 4.0}, -1, -2});

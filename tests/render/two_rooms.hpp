@@ -26,6 +26,12 @@ struct TwoRooms {
   bool cell_a_sees_b = true;  // false: room B's polygons are left out of cell A's PVS
   int subdivisions = 1;       // each rectangle as an n x n grid of quads
   int circuits = 2;           // more than 2: extra circuits with no light (for the limit test)
+  // Vertex light scaled by 0.4 .. 1.6 along each rectangle's first edge (mean 1 over the grid's vertices),
+  // so per-vertex patches differ from the flat polygon light of the coarse level. Needs subdivisions >= 2.
+  bool light_gradient = false;
+  // Four cells (each room halved at y = 2) under a three-node tree; each room's PVS leaves out the other
+  // room's copy of the shared wall, which faces away from it: conservative, and smaller than everything.
+  bool four_cells = false;
 };
 
 [[nodiscard]] model::BundleContents make_two_rooms(const TwoRooms& scene);

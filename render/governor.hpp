@@ -1,0 +1,35 @@
+#pragma once
+// Frame-rate governor (after Funkhouser & Sequin 1993, per cell rather than per object): keeps a running
+// cost estimate per cell and refinement level from measured frame times, and picks the best level whose
+// estimate fits the frame budget. Pure CPU; times come from the caller, so it is tested without a clock.
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+
+namespace walk::render {
+
+enum class MovingLevel : std::uint8_t { Coarse = 0, Patches = 1 };
+
+class FrameGovernor {
+ public:
+  explicit FrameGovernor(double target_hz = 60.0);
+  [[nodiscard]] double budget_ms() const { return budget_ms_; }
+  // A moving frame at `level` in `cell` took `ms` (drawn and finished).
+  void record_moving(std::uint32_t cell, MovingLevel level, double ms);
+  // One accumulation sample took `ms`.
+  void record_sample(double ms);
+  // Patches when their estimate in this cell fits the budget with 10 % headroom (an untried level is tried
+  // once when the coarse level left room); coarse otherwise.
+  [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell) const;
+  // While still: how many accumulation samples fit in one frame (at least 1).
+  [[nodiscard]] int samples_per_frame() const;
+  // Estimate in ms, or a negative number when never measured.
+  [[nodiscard]] double estimate(std::uint32_t cell, MovingLevel level) const;
+
+ private:
+  double budget_ms_;
+  std::unordered_map<std::uint32_t, std::array<double, 2>> moving_;  // per cell, per level; < 0 unknown
+  double sample_ms_ = -1.0;
+};
+
+}  // namespace walk::render

@@ -1,0 +1,51 @@
+#pragma once
+// The paper's adaptive refinement as a state machine, apart from GL so it can be tested alone. While the view
+// moves, each frame is drawn at the level the governor chose (coarse flat polygons or radiosity patches).
+// Once still: patches are blended in over `blend_steps` frames, then quad diagonals are chosen by colour,
+// then jittered samples are accumulated, then nothing is drawn until something changes.
+#include <cstdint>
+
+namespace walk::render {
+
+struct RefineSettings {
+  int blend_steps = 50;       // frames from coarse polygons to radiosity patches
+  int aa_samples = 16;        // accumulated jittered samples (1: no anti-aliasing)
+  int samples_per_frame = 0;  // accumulated per displayed frame; 0: as many as the governor says fit
+  bool diagonals = true;      // re-split quads along the diagonal of least colour difference
+};
+
+enum class RefineStage : std::uint8_t { Moving, Blending, Diagonals, Accumulating, Idle };
+
+struct RefineStep {
+  RefineStage stage = RefineStage::Idle;
+  float patch_weight = 1.0f;  // 0: flat polygon light, 1: per-vertex patches
+  int sample = -1;            // accumulation sample index, -1 when not accumulating
+  bool diagonals = false;     // draw with the colour-chosen diagonals (chosen first at stage Diagonals)
+  [[nodiscard]] bool draws() const { return stage != RefineStage::Idle; }
+};
+
+class RefineSchedule {
+ public:
+  explicit RefineSchedule(RefineSettings settings = {});
+  // The view moved (or the frame size changed): the next frame is a moving frame at `moving_patch_weight`.
+  void view_changed(float moving_patch_weight);
+  // Dimmers changed with the view still: patches stay; diagonals are chosen again for the new mix and
+  // accumulation starts again (no coarse flash).
+  void light_changed();
+  // The step for this frame; advances the schedule.
+  [[nodiscard]] RefineStep next();
+  [[nodiscard]] const RefineSettings& settings() const { return settings_; }
+  [[nodiscard]] RefineStage stage() const { return stage_; }
+
+ private:
+  [[nodiscard]] RefineStage after_blend() const {
+    return settings_.diagonals ? RefineStage::Diagonals : RefineStage::Accumulating;
+  }
+  RefineSettings settings_;
+  RefineStage stage_ = RefineStage::Moving;
+  float weight_ = 0.0f;  // patch weight last shown
+  int blend_step_ = 0;
+  int sample_ = 0;
+};
+
+}  // namespace walk::render

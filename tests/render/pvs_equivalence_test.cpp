@@ -1,0 +1,53 @@
+// The PVS-culled frame equals the unculled frame pixel for pixel, on a four-cell bundle with a three-node
+// tree whose PVS is conservative (each room leaves out only the other room's back-facing shared wall).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render_test_support.hpp"
+#include "two_rooms.hpp"
+
+namespace walk::render::test {
+namespace {
+
+class PvsEquivalenceTest : public ::testing::TestWithParam<BackendKind> {};
+
+TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
+  auto backend = headless(GetParam());
+  TwoRooms scene;
+  scene.four_cells = true;
+  scene.subdivisions = 3;  // several ranges per polygon list, so merging is exercised
+  auto bundle = open_two_rooms(scene, "pvs_equivalence");
+  ASSERT_EQ(bundle->cells().size(), 4u);
+  Renderer culled(*bundle), unculled(*bundle);
+  unculled.set_pvs_culling(false);
+  int views = 0;
+  bool cells_seen[4] = {};
+  for (double x : {1.0, 3.0, 5.0, 7.0})
+    for (double y : {1.0, 3.0})
+      for (int turn = 0; turn < 8; ++turn) {
+        View view;
+        view.eye = {x, y, 1.6};
+        const double a = turn * 0.785398163;
+        view.forward = {std::cos(a), std::sin(a), -0.1};
+        culled.draw(view, kWidth, kHeight);
+        unculled.draw(view, kWidth, kHeight);
+        const Image a_image = culled.read_pixels(kWidth, kHeight);
+        const Image b_image = unculled.read_pixels(kWidth, kHeight);
+        const auto& stats = culled.last_stats();
+        ASSERT_LT(stats.cell, 4u);
+        cells_seen[stats.cell] = true;
+        EXPECT_EQ(stats.polygons_drawn + 3, unculled.last_stats().polygons_drawn) << "cell " << stats.cell;
+        ASSERT_EQ(a_image.rgba, b_image.rgba) << "eye " << x << "," << y << " turn " << turn;
+        ++views;
+      }
+  EXPECT_EQ(views, 64);
+  for (bool seen : cells_seen) EXPECT_TRUE(seen);
+}
+
+INSTANTIATE_TEST_SUITE_P(Headless, PvsEquivalenceTest,
+                         ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
+                         [](const auto& info) { return std::string(backend_kind_name(info.param)); });
+
+}  // namespace
+}  // namespace walk::render::test

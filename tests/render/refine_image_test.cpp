@@ -1,0 +1,158 @@
+// Adaptive refinement through OSMesa and EGL: coarse-to-patch blending is monotone, accumulation lowers an
+// edge aliasing measure as samples grow, and a converged renderer draws nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "render_test_support.hpp"
+#include "two_rooms.hpp"
+
+namespace walk::render::test {
+namespace {
+
+class RefineImageTest : public ::testing::TestWithParam<BackendKind> {
+ protected:
+  void SetUp() override { backend_ = headless(GetParam()); }
+  std::unique_ptr<Backend> backend_;
+};
+
+// Rolled 12 degrees so the opening's and the room's edges are slanted: staircases to anti-alias.
+View rolled_view() {
+  View view = looking_along_x(+1.0, 1.0);
+  view.up = {0.0, std::sin(0.21), std::cos(0.21)};
+  view.forward = {1.0, 0.15, -0.05};
+  return view;
+}
+
+// Refines a still view until the renderer goes idle; returns the final picture and the steps it drew.
+Image converge(Renderer& renderer, const View& view, int* steps = nullptr) {
+  int n = 0;
+  while (renderer.refine(view, kWidth, kHeight)) {
+    if (++n > 1000) ADD_FAILURE() << "refinement never converged";
+    if (n > 1000) break;
+  }
+  if (steps) *steps = n;
+  return renderer.read_pixels(kWidth, kHeight);
+}
+
+// The coarse level is flat per polygon (PLGT, or the mean of the polygon's vertices where the bundle has no
+// PLGT, as here: write_bundle does not write it yet); patches follow the per-vertex gradient. Every byte of
+// every frame in between moves one way only, from the coarse frame to the patch frame.
+TEST_P(RefineImageTest, CoarseToPatchBlendIsMonotone) {
+  TwoRooms scene;
+  scene.light_gradient = true;
+  scene.subdivisions = 4;
+  auto bundle = open_two_rooms(scene, "blend");
+  Renderer renderer(*bundle);
+  renderer.set_refine_settings({.blend_steps = 10, .aa_samples = 1});
+  renderer.set_moving_level(MovingLevel::Coarse);
+  const View view = looking_along_x(+1.0);
+  ASSERT_TRUE(renderer.refine(view, kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().stage, RefineStage::Moving);
+  EXPECT_EQ(renderer.last_stats().patch_weight, 0.0f);
+  std::vector<Image> frames{renderer.read_pixels(kWidth, kHeight)};
+  int blend_frames = 0;
+  while (renderer.refine(view, kWidth, kHeight)) {
+    frames.push_back(renderer.read_pixels(kWidth, kHeight));
+    blend_frames += renderer.last_stats().stage == RefineStage::Blending;
+  }
+  EXPECT_EQ(blend_frames, 10);
+  const Image& coarse = frames.front();
+  const Image& fine = frames.back();
+  // B's far wall: its light rises with height; 8 pixels above the centre is still that wall.
+  const std::uint8_t* c_mid = centre(coarse);
+  const std::uint8_t* c_up = coarse.pixel(kWidth / 2, kHeight / 2 - 8);
+  const std::uint8_t* f_mid = centre(fine);
+  const std::uint8_t* f_up = fine.pixel(kWidth / 2, kHeight / 2 - 8);
+  const glm::dvec3 mean = radiosity(scene, true, scene.wall_factor, 1, 1);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(int(c_mid[k]), expected_byte(mean[k], scene.exposure), 2) << "coarse: the polygon's mean";
+    EXPECT_EQ(c_mid[k], c_up[k]) << "coarse is flat over the polygon, channel " << k;
+  }
+  EXPECT_GT(int(f_up[1]), int(f_mid[1]) + 5) << "patches show the gradient";
+  int changed = 0;
+  for (std::size_t i = 0; i < fine.rgba.size(); ++i) {
+    const bool up = fine.rgba[i] >= coarse.rgba[i];
+    changed += fine.rgba[i] != coarse.rgba[i];
+    for (std::size_t f = 1; f < frames.size(); ++f) {
+      const int a = frames[f - 1].rgba[i], b = frames[f].rgba[i];
+      ASSERT_TRUE(up ? b >= a : b <= a) << "frame " << f << ", byte " << i << ": " << a << " -> " << b;
+    }
+  }
+  EXPECT_GT(changed, int(fine.rgba.size() / 8));
+}
+
+// Aliasing measure: mean absolute difference from a 64-sample picture, over pixels where that picture
+// differs from the single-sample one (the edges). Must fall as samples grow: 1 > 4 > 16.
+TEST_P(RefineImageTest, AccumulationLowersEdgeAliasing) {
+  TwoRooms scene;
+  auto bundle = open_two_rooms(scene, "aliasing");
+  Renderer renderer(*bundle);
+  const View view = rolled_view();
+  auto picture = [&](int samples) {
+    renderer.set_refine_settings({.blend_steps = 0, .aa_samples = samples});
+    return converge(renderer, view);
+  };
+  const Image reference = picture(64);
+  const Image one = picture(1);
+  std::vector<std::size_t> edge;
+  for (std::size_t i = 0; i < one.rgba.size(); ++i)
+    if (i % 4 != 3 && std::abs(int(one.rgba[i]) - int(reference.rgba[i])) > 2) edge.push_back(i);
+  ASSERT_GT(edge.size(), 100u) << "the view must have slanted edges";
+  auto measure = [&](const Image& image) {
+    double sum = 0.0;
+    for (std::size_t i : edge) sum += std::abs(int(image.rgba[i]) - int(reference.rgba[i]));
+    return sum / double(edge.size());
+  };
+  const double e1 = measure(one), e4 = measure(picture(4)), e16 = measure(picture(16));
+  std::cout << "[ aliasing ] mean error at edges: 1 sample " << e1 << ", 4: " << e4 << ", 16: " << e16
+            << "\n";
+  EXPECT_LT(e4, 0.7 * e1);
+  EXPECT_LT(e16, 0.7 * e4);
+  // Away from edges accumulation changes nothing: a flat wall stays its formula colour.
+  const glm::dvec3 wall = radiosity(scene, true, scene.wall_factor, 1, 1);
+  const Image sixteen = picture(16);
+  EXPECT_EQ(renderer.last_stats().samples, 16);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(int(centre(sixteen)[k]), expected_byte(wall[k], scene.exposure), 2) << "channel " << k;
+}
+
+TEST_P(RefineImageTest, IdleRendererDrawsNothingUntilSomethingChanges) {
+  TwoRooms scene;
+  auto bundle = open_two_rooms(scene, "idle");
+  Renderer renderer(*bundle);
+  renderer.set_refine_settings({.blend_steps = 5, .aa_samples = 4, .samples_per_frame = 1});
+  renderer.set_moving_level(MovingLevel::Coarse);
+  const View view = looking_along_x(+1.0);
+  int steps = 0;
+  const Image done = converge(renderer, view, &steps);
+  EXPECT_EQ(steps, 1 + 5 + 1 + 4);  // moving frame, blend steps, diagonals, one sample per step
+  const auto frames = renderer.last_stats().frames_drawn;
+  for (int i = 0; i < 20; ++i) ASSERT_FALSE(renderer.refine(view, kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().frames_drawn, frames) << "an idle renderer must not draw";
+  EXPECT_EQ(renderer.last_stats().stage, RefineStage::Idle);
+  EXPECT_EQ(renderer.read_pixels(kWidth, kHeight).rgba, done.rgba);
+
+  // A dimmer change redraws (samples again, no coarse frame), then goes idle again.
+  renderer.set_dimmers(std::vector<float>{0.5f, 1.0f});
+  ASSERT_TRUE(renderer.refine(view, kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().stage, RefineStage::Diagonals);
+  EXPECT_EQ(renderer.last_stats().patch_weight, 1.0f);
+  (void)converge(renderer, view);
+  EXPECT_FALSE(renderer.refine(view, kWidth, kHeight));
+  // Setting the same levels again is not a change.
+  renderer.set_dimmers(std::vector<float>{0.5f, 1.0f});
+  EXPECT_FALSE(renderer.refine(view, kWidth, kHeight));
+  // Moving draws a moving frame.
+  View moved = view;
+  moved.eye.x += 0.01;
+  ASSERT_TRUE(renderer.refine(moved, kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().stage, RefineStage::Moving);
+}
+
+INSTANTIATE_TEST_SUITE_P(Headless, RefineImageTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
+                         [](const auto& info) { return std::string(backend_kind_name(info.param)); });
+
+}  // namespace
+}  // namespace walk::render::test

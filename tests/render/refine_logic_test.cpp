@@ -1,0 +1,172 @@
+// Adaptive refinement's CPU parts alone: the schedule's steps, the jitter pattern and the governor's choices
+// from given frame times (no clock, no GL).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <set>
+#include <vector>
+
+#include "render/diagonals.hpp"
+#include "render/governor.hpp"
+#include "render/jitter.hpp"
+#include "render/refine_schedule.hpp"
+
+namespace walk::render {
+namespace {
+
+TEST(RefineSchedule, MovingThenBlendThenSamplesThenIdle) {
+  RefineSchedule schedule({.blend_steps = 50, .aa_samples = 8});
+  schedule.view_changed(0.0f);
+  RefineStep step = schedule.next();
+  EXPECT_EQ(step.stage, RefineStage::Moving);
+  EXPECT_EQ(step.patch_weight, 0.0f);
+  float last = 0.0f;
+  for (int i = 1; i <= 50; ++i) {
+    step = schedule.next();
+    ASSERT_EQ(step.stage, RefineStage::Blending) << i;
+    EXPECT_GT(step.patch_weight, last);
+    last = step.patch_weight;
+  }
+  EXPECT_EQ(last, 1.0f);
+  step = schedule.next();
+  EXPECT_EQ(step.stage, RefineStage::Diagonals);
+  EXPECT_TRUE(step.diagonals);
+  for (int s = 0; s < 8; ++s) {
+    step = schedule.next();
+    ASSERT_EQ(step.stage, RefineStage::Accumulating);
+    EXPECT_EQ(step.sample, s);
+    EXPECT_TRUE(step.diagonals);
+  }
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(schedule.next().draws());
+}
+
+TEST(RefineSchedule, MovingAtPatchesSkipsTheBlend) {
+  RefineSchedule schedule({.blend_steps = 50, .aa_samples = 2, .samples_per_frame = 0, .diagonals = false});
+  schedule.view_changed(1.0f);
+  EXPECT_EQ(schedule.next().stage, RefineStage::Moving);
+  EXPECT_EQ(schedule.next().stage, RefineStage::Accumulating);
+}
+
+TEST(RefineSchedule, LightChangeRestartsSamplesNotTheBlend) {
+  RefineSchedule schedule({.blend_steps = 4, .aa_samples = 3});
+  schedule.view_changed(0.0f);
+  for (int i = 0; i < 1 + 4 + 1 + 3; ++i) (void)schedule.next();
+  EXPECT_FALSE(schedule.next().draws());
+  schedule.light_changed();
+  EXPECT_EQ(schedule.next().stage, RefineStage::Diagonals) << "the new mix needs its own diagonals";
+  const RefineStep step = schedule.next();
+  EXPECT_EQ(step.stage, RefineStage::Accumulating);
+  EXPECT_EQ(step.sample, 0);
+  EXPECT_EQ(step.patch_weight, 1.0f);
+}
+
+TEST(Jitter, FirstSampleIsThePixelCentreAndWeightsAreTheTent) {
+  const auto samples = jitter_pattern(16);
+  ASSERT_EQ(samples.size(), 16u);
+  EXPECT_EQ(samples[0].dx, 0.0f);
+  EXPECT_EQ(samples[0].weight, 1.0f);
+  double mean_x = 0.0, mean_y = 0.0;
+  for (const auto& s : samples) {
+    EXPECT_LE(std::abs(s.dx), 1.0f);
+    EXPECT_LE(std::abs(s.dy), 1.0f);
+    EXPECT_NEAR(s.weight, (1 - std::abs(s.dx)) * (1 - std::abs(s.dy)), 1e-6);
+    mean_x += s.dx / 16.0;
+    mean_y += s.dy / 16.0;
+  }
+  // Stratified: the samples are centred on the pixel (no drift of the image).
+  EXPECT_LT(std::abs(mean_x), 0.25);
+  EXPECT_LT(std::abs(mean_y), 0.25);
+  EXPECT_EQ(jitter_pattern(16)[7].dx, samples[7].dx) << "deterministic";
+}
+
+TEST(FrameGovernor, ChoosesPatchesOnlyWhereTheyFitPerCell) {
+  FrameGovernor governor(60.0);
+  EXPECT_NEAR(governor.budget_ms(), 16.667, 0.01);
+  EXPECT_EQ(governor.choose_moving(0), MovingLevel::Patches) << "nothing known: try the better level";
+  governor.record_moving(0, MovingLevel::Patches, 30.0);
+  EXPECT_EQ(governor.choose_moving(0), MovingLevel::Coarse) << "30 ms does not fit 16.7 ms";
+  governor.record_moving(1, MovingLevel::Patches, 8.0);
+  EXPECT_EQ(governor.choose_moving(1), MovingLevel::Patches) << "cells are judged apart";
+  governor.record_moving(2, MovingLevel::Coarse, 15.0);
+  EXPECT_EQ(governor.choose_moving(2), MovingLevel::Coarse) << "coarse barely fits: do not try patches";
+  // A cell that got cheaper comes back up as measurements arrive.
+  for (int i = 0; i < 20; ++i) governor.record_moving(0, MovingLevel::Patches, 5.0);
+  EXPECT_EQ(governor.choose_moving(0), MovingLevel::Patches);
+}
+
+TEST(FrameGovernor, SamplesPerFrameFollowTheSampleCost) {
+  FrameGovernor governor(60.0);
+  EXPECT_EQ(governor.samples_per_frame(), 1);
+  governor.record_sample(3.0);
+  EXPECT_EQ(governor.samples_per_frame(), 5);  // 0.9 * 16.7 / 3
+  FrameGovernor slow(60.0);
+  slow.record_sample(40.0);
+  EXPECT_EQ(slow.samples_per_frame(), 1) << "always at least one sample, or refinement never ends";
+  slow.record_sample(std::nan(""));
+  EXPECT_EQ(slow.samples_per_frame(), 1);
+}
+
+}  // namespace
+}  // namespace walk::render
+
+namespace walk::render {
+namespace {
+
+// One quad 0-1-2-3 (counter-clockwise), split by the bundle along 1-3 as the compiler's dicing does.
+struct OneQuad {
+  std::vector<model::PolygonRecord> polygons{{0, 6, 0, 4, 0, 0, 0, 0}};
+  std::vector<std::uint32_t> indices{0, 1, 3, 1, 2, 3};
+};
+
+TEST(Diagonals, QuadIsFoundWithItsCornersInOrder) {
+  OneQuad q;
+  const auto quads = find_quads(q.polygons, q.indices);
+  ASSERT_EQ(quads.size(), 1u);
+  EXPECT_EQ(quads[0].first_index, 0u);
+  // Triangles (0,1,3) and (1,2,3) share 1-3: corners 0, 1, 2, 3 in some rotation, split along 1-3.
+  const auto& v = quads[0].v;
+  EXPECT_EQ(std::set<std::uint32_t>(v.begin(), v.end()), (std::set<std::uint32_t>{0, 1, 2, 3}));
+  EXPECT_TRUE((v[1] == 1 && v[3] == 3) || (v[1] == 3 && v[3] == 1));
+}
+
+TEST(Diagonals, SplitAlongTheEndsOfLeastColourDifference) {
+  OneQuad q;
+  const auto quads = find_quads(q.polygons, q.indices);
+  // Corner 0 and 2 bright, 1 and 3 dark: the 1-3 split spreads the dark diagonal over both triangles; the
+  // 0-2 split (ends equal) follows the light.
+  std::vector<glm::vec3> colour{glm::vec3(10.0f), glm::vec3(0.0f), glm::vec3(9.0f), glm::vec3(5.0f)};
+  std::vector<std::uint32_t> refined = q.indices;
+  EXPECT_EQ(choose_diagonals(quads, colour, refined), 1u);
+  auto has_edge = [&](std::uint32_t a, std::uint32_t b) {
+    for (int t = 0; t < 2; ++t) {
+      int found = 0;
+      for (int k = 0; k < 3; ++k) found += refined[t * 3 + k] == a || refined[t * 3 + k] == b;
+      if (found != 2) return false;
+    }
+    return true;
+  };
+  EXPECT_TRUE(has_edge(0, 2)) << "both triangles must share the 0-2 diagonal";
+  // Winding kept: each triangle still counter-clockwise in the quad's corner order (0,1,2,3 positive).
+  auto ccw = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const glm::vec2 p[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const glm::vec2 u = p[b] - p[a], w = p[c] - p[a];
+    return u.x * w.y - u.y * w.x > 0.0f;
+  };
+  EXPECT_TRUE(ccw(refined[0], refined[1], refined[2]));
+  EXPECT_TRUE(ccw(refined[3], refined[4], refined[5]));
+  // Swap the light: the bundle's diagonal comes back.
+  colour = {glm::vec3(0.0f), glm::vec3(10.0f), glm::vec3(5.0f), glm::vec3(9.0f)};
+  EXPECT_EQ(choose_diagonals(quads, colour, refined), 0u);
+  EXPECT_TRUE(has_edge(1, 3));
+}
+
+TEST(Diagonals, TrianglesThatAreNotPairsAreLeftAlone) {
+  std::vector<model::PolygonRecord> polygons{{0, 6, 0, 6, 0, 0, 0, 0}};
+  std::vector<std::uint32_t> indices{0, 1, 2, 3, 4, 5};
+  EXPECT_TRUE(find_quads(polygons, indices).empty());
+}
+
+}  // namespace
+}  // namespace walk::render
