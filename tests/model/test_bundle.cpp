@@ -83,6 +83,27 @@ TEST_F(BundleTest, RoundTripKeepsEveryRecord) {
   EXPECT_EQ(b->file_size() % kSectionAlignment, 0u);
 }
 
+TEST_F(BundleTest, OptionalLightFormsRoundTrip) {
+  BundleContents c = small_bundle();
+  c.compact_colour.assign(4, {200, 180, 160, 255});
+  c.compact_intensity = {0, 10, 20, 30, 40, 50, 60, 255};
+  c.polygon_light.assign(1 * 2 * 3, 0.75f);
+  c.circuits[1].compact_scale = 12.5f;
+  write_bundle(path_, c);
+  const auto b = Bundle::open(path_);
+  ASSERT_EQ(b->compact_colour().size(), 4u);
+  EXPECT_EQ(b->compact_colour()[3][1], 180);
+  ASSERT_EQ(b->compact_intensity().size(), 8u);
+  EXPECT_EQ(b->compact_intensity()[7], 255);
+  ASSERT_EQ(b->polygon_light().size(), 6u);
+  EXPECT_FLOAT_EQ(b->polygon_light()[5], 0.75f);
+  EXPECT_FLOAT_EQ(b->circuits()[1].compact_scale, 12.5f);
+
+  c.compact_intensity.pop_back();  // one short: refused, naming the section
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LINT"), std::string::npos);
+}
+
 TEST_F(BundleTest, EveryFlippedByteIsRejected) {
   write_bundle(path_, small_bundle());
   const std::vector<char> good = bytes();
