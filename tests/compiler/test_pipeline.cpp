@@ -137,6 +137,13 @@ TEST_F(PipelineTest, CompactLightIsStoredWithItsMeasuredError) {
   EXPECT_GT(c.rms_error_all_on, 0.0);  // lossy: a zero would mean the error is not measured
   for (std::size_t i = 0; i < b.circuits.size(); ++i)
     EXPECT_FLOAT_EQ(b.circuits[i].compact_scale, c.scale[i]);
+  // And they reach the file the runtime maps.
+  const std::string path = (dir_ / "compact.walk").string();
+  model::write_bundle(path, b);
+  const auto read = model::Bundle::open(path);
+  EXPECT_EQ(read->compact_colour().size(), b.vertices.size());
+  EXPECT_EQ(read->compact_intensity().size(), b.compact_intensity.size());
+  EXPECT_EQ(read->polygon_light().size(), b.polygon_light.size());
 }
 
 TEST(CompactLight, GreyLightOfOneCircuitRoundTripsWithinQuantisation) {
