@@ -24,7 +24,8 @@ float difference(const glm::vec3& a, const glm::vec3& b) {
 std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
                              std::span<const std::uint32_t> indices) {
   std::vector<Quad> quads;
-  for (const auto& p : polygons) {
+  for (std::uint32_t id = 0; id < polygons.size(); ++id) {
+    const auto& p = polygons[id];
     const std::uint64_t end = std::uint64_t(p.first_index) + p.index_count;
     if (end > indices.size()) continue;
     for (std::uint64_t i = p.first_index; i + 6 <= end;) {
@@ -48,7 +49,7 @@ std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
         i += 3;
         continue;
       }
-      quads.push_back({std::uint32_t(i), {u1, pp, t2[1], q}});
+      quads.push_back({std::uint32_t(i), id, {u1, pp, t2[1], q}});
       i += 6;
     }
   }

@@ -17,6 +17,7 @@ namespace walk::render {
 // in the bundle along v[1]-v[3]; `first_index` is where the pair's six indices start in INDX.
 struct Quad {
   std::uint32_t first_index = 0;
+  std::uint32_t polygon = 0;
   std::array<std::uint32_t, 4> v{};
 };
 

@@ -12,6 +12,10 @@ struct RefineSettings {
   int aa_samples = 16;        // accumulated jittered samples (1: no anti-aliasing)
   int samples_per_frame = 0;  // accumulated per displayed frame; 0: as many as the governor says fit
   bool diagonals = true;      // re-split quads along the diagonal of least colour difference
+  // With diagonals: quads whose bilinear twist exceeds this fraction of the exposure (white) are subdivided,
+  // at most `subdivision_depth` times (each level quarters the twist). 0 depth: no subdivision.
+  float subdivision_error = 0.01f;
+  int subdivision_depth = 3;
 };
 
 enum class RefineStage : std::uint8_t { Moving, Blending, Diagonals, Accumulating, Idle };

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "model/error.hpp"
+#include "model/model.hpp"
 #include "render/accumulator.hpp"
 #include "render/camera.hpp"
 #include "render/diagonals.hpp"
@@ -21,6 +22,7 @@
 #include "render/jitter.hpp"
 #include "render/light_mixer.hpp"
 #include "render/shader.hpp"
+#include "render/subdivision.hpp"
 #include "render/tonemap.hpp"
 
 namespace walk::render {
@@ -28,6 +30,10 @@ namespace walk::render {
 struct Renderer::Impl {
   const model::Bundle& bundle;
   ShaderProgram program{"scene", kLightMixerVertexShader, kTonemapFragmentShader};
+  // Subdivided quads carry their mixed radiosity per vertex: made on first use, like the accumulator.
+  std::optional<ShaderProgram> shaded_program;
+  GLuint shaded_vao = 0, shaded_vbo = 0;
+  GLsizei shaded_vertices = 0;
   GLint u_view_projection = -1, u_light = -1, u_circuit_count = -1, u_levels = -1, u_ambient = -1,
         u_inv_exposure = -1, u_opacity = -1, u_polygon_light = -1, u_patch_weight = -1;
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, light_buffer = 0, light_texture = 0,
@@ -63,6 +69,8 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &light_buffer);
     glDeleteBuffers(1, &ibo);
     glDeleteBuffers(1, &refined_ibo);
+    glDeleteBuffers(1, &shaded_vbo);
+    glDeleteVertexArrays(1, &shaded_vao);
     glDeleteVertexArrays(1, &refined_vao);
     glDeleteBuffers(1, &vbo);
     glDeleteVertexArrays(1, &vao);
@@ -87,6 +95,17 @@ struct Renderer::Impl {
 };
 
 namespace {
+
+const char* const kShadedVertexShader = R"glsl(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_radiosity;
+uniform mat4 u_view_projection;
+out vec3 v_radiosity;
+void main() {
+  v_radiosity = a_radiosity;
+  gl_Position = u_view_projection * vec4(a_position, 1.0);
+}
+)glsl";
 
 // PLGT when the bundle has it; otherwise each polygon's plain mean of its vertices' light, so the coarse
 // level always exists.
@@ -335,6 +354,20 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     };
     glUniform1f(r.u_opacity, 1.0f);
     if (!list.opaque.empty()) draw_batch(list.opaque);
+    if (options.diagonals && r.shaded_vertices > 0) {
+      // The subdivided quads (their own triangles in the refined index buffer are degenerate). Drawn for
+      // every cell: they are few, and only while still.
+      glUseProgram(r.shaded_program->id());
+      glUniformMatrix4fv(r.shaded_program->uniform("u_view_projection"), 1, GL_FALSE,
+                         &view_projection_matrix[0][0]);
+      glUniform1f(r.shaded_program->uniform("u_inv_exposure"),
+                  meta.exposure > 0.0f ? 1.0f / meta.exposure : 1.0f);
+      glUniform1f(r.shaded_program->uniform("u_opacity"), 1.0f);
+      glBindVertexArray(r.shaded_vao);
+      glDrawArrays(GL_TRIANGLES, 0, r.shaded_vertices);
+      glBindVertexArray(options.diagonals ? r.refined_vao : r.vao);
+      glUseProgram(r.program.id());
+    }
     if (!list.glass.empty()) {
       // After everything opaque, depth-tested but not written, so glass behind glass still shows. Alpha
       // keeps 1 in the frame so read_pixels stays opaque.
@@ -370,9 +403,11 @@ void Renderer::Impl::choose_diagonals() {
   const auto vertices = bundle.vertices();
   const auto light = bundle.light();
   const std::size_t circuits = levels.size();
+  const float ambient = bundle.meta().ambient;
   std::vector<glm::vec3> colour(vertices.size());
   for (std::size_t v = 0; v < vertices.size(); ++v) {
-    glm::vec3 c{0.0f};
+    const float* albedo = vertices[v].albedo;
+    glm::vec3 c = ambient * glm::vec3(albedo[0], albedo[1], albedo[2]);
     for (std::size_t k = 0; k < circuits; ++k) {
       const float* l = &light[(v * circuits + k) * 3];
       c += levels[k] * glm::vec3(l[0], l[1], l[2]);
@@ -381,6 +416,40 @@ void Renderer::Impl::choose_diagonals() {
   }
   if (refined_indices.empty()) refined_indices.assign(bundle.indices().begin(), bundle.indices().end());
   stats.quads_flipped = std::uint32_t(render::choose_diagonals(quads, colour, refined_indices));
+
+  // Subdivision of opaque quads only: glass is blended and drawn last, apart.
+  const auto& settings = schedule.settings();
+  std::vector<Quad> opaque;
+  for (const Quad& q : quads)
+    if (bundle.polygons()[q.polygon].role != std::uint32_t(model::Role::Glass)) opaque.push_back(q);
+  const float exposure = bundle.meta().exposure > 0.0f ? bundle.meta().exposure : 1.0f;
+  const Subdivision sub =
+      subdivide(opaque, vertices, colour, settings.subdivision_error * exposure, settings.subdivision_depth);
+  for (std::size_t i : sub.replaced_quads)
+    std::fill_n(refined_indices.begin() + opaque[i].first_index, 6, opaque[i].v[0]);
+  stats.quads_subdivided = std::uint32_t(sub.replaced_quads.size());
+  stats.subdivision_triangles = std::uint32_t(sub.triangles.size() / 3);
+  shaded_vertices = GLsizei(sub.triangles.size());
+  if (!sub.triangles.empty()) {
+    if (!shaded_program) {
+      shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader);
+      glGenVertexArrays(1, &shaded_vao);
+      glGenBuffers(1, &shaded_vbo);
+      glBindVertexArray(shaded_vao);
+      glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
+      glEnableVertexAttribArray(0);
+      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ShadedVertex),
+                            reinterpret_cast<const void*>(offsetof(ShadedVertex, position)));
+      glEnableVertexAttribArray(1);
+      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(ShadedVertex),
+                            reinterpret_cast<const void*>(offsetof(ShadedVertex, radiosity)));
+      glBindVertexArray(0);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sub.triangles.size() * sizeof(ShadedVertex)),
+                 sub.triangles.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
   // Through the copy target: the element binding belongs to whichever VAO is bound.
   glBindBuffer(GL_COPY_WRITE_BUFFER, refined_ibo);
   glBufferSubData(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(refined_indices.size() * sizeof(std::uint32_t)),

@@ -55,7 +55,9 @@ struct FrameStats {
   RefineStage stage = RefineStage::Moving;  // what the last refine() step did (Idle: drew nothing)
   float patch_weight = 1.0f;                // of the last frame drawn
   int samples = 1;                          // samples accumulated in the picture now shown
-  std::uint32_t quads_flipped = 0;  // quads split differently from the bundle at the last diagonal choice
+  std::uint32_t quads_flipped = 0;     // quads split differently from the bundle at the last diagonal choice
+  std::uint32_t quads_subdivided = 0;  // quads drawn as bilinear sub-quads at the last choice
+  std::uint32_t subdivision_triangles = 0;
 };
 
 class Renderer {

@@ -151,6 +151,36 @@ TEST_P(RefineImageTest, IdleRendererDrawsNothingUntilSomethingChanges) {
   EXPECT_EQ(renderer.last_stats().stage, RefineStage::Moving);
 }
 
+// A wall drawn as one quad whose corners alternate 1.6 and 0.4 times the light: the bundle's diagonal joins
+// the two bright corners, so its centre shows 1.6; the bilinear patch has the corners' mean, 1.0, there.
+// Subdivision must bring the centre to the bilinear value; without it, the centre stays on the diagonal.
+TEST_P(RefineImageTest, BilinearSubdivisionWhereTheTwistIsLarge) {
+  TwoRooms scene;
+  scene.light_twist = true;
+  auto bundle = open_two_rooms(scene, "twist");
+  const View view = looking_along_x(-1.0);  // A's outer wall, centred
+  auto refined = [&](int depth, FrameStats* stats) {
+    Renderer renderer(*bundle);
+    renderer.set_refine_settings({.blend_steps = 0, .aa_samples = 1, .subdivision_depth = depth});
+    const Image image = converge(renderer, view);
+    *stats = renderer.last_stats();
+    return image;
+  };
+  FrameStats flat_stats, sub_stats;
+  const Image flat = refined(0, &flat_stats);
+  const Image sub = refined(4, &sub_stats);
+  EXPECT_EQ(flat_stats.quads_subdivided, 0u);
+  EXPECT_GT(sub_stats.quads_subdivided, 0u);
+  EXPECT_GT(sub_stats.subdivision_triangles, 2 * sub_stats.quads_subdivided);
+  const glm::dvec3 diagonal = radiosity(scene, false, 1.6 * scene.wall_factor, 1, 1);
+  const glm::dvec3 bilinear = radiosity(scene, false, 1.0 * scene.wall_factor, 1, 1);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(int(centre(flat)[k]), expected_byte(diagonal[k], scene.exposure), 3)
+        << "no subdivision, " << k;
+    EXPECT_NEAR(int(centre(sub)[k]), expected_byte(bilinear[k], scene.exposure), 3) << "subdivided, " << k;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Headless, RefineImageTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 

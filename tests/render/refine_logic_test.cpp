@@ -12,6 +12,7 @@
 #include "render/governor.hpp"
 #include "render/jitter.hpp"
 #include "render/refine_schedule.hpp"
+#include "render/subdivision.hpp"
 
 namespace walk::render {
 namespace {
@@ -160,6 +161,32 @@ TEST(Diagonals, SplitAlongTheEndsOfLeastColourDifference) {
   colour = {glm::vec3(0.0f), glm::vec3(10.0f), glm::vec3(5.0f), glm::vec3(9.0f)};
   EXPECT_EQ(choose_diagonals(quads, colour, refined), 0u);
   EXPECT_TRUE(has_edge(1, 3));
+}
+
+TEST(Subdivision, DepthFollowsTheTwistAndCornersStayBilinear) {
+  OneQuad q;
+  const auto quads = find_quads(q.polygons, q.indices);
+  std::vector<model::VertexRecord> vertices(4);
+  const float corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int k = 0; k < 4; ++k) {
+    vertices[k].position[0] = corners[k][0];
+    vertices[k].position[1] = corners[k][1];
+  }
+  // Twist |16 - 0 + 16 - 0| / 4 = 8; threshold 0.6: 8 -> 2 -> 0.5, two levels, 16 sub-quads, 32 triangles.
+  const std::vector<glm::vec3> colour{glm::vec3(16.0f), glm::vec3(0.0f), glm::vec3(16.0f), glm::vec3(0.0f)};
+  const glm::vec3 c[4] = {colour[0], colour[1], colour[2], colour[3]};
+  EXPECT_FLOAT_EQ(quad_twist(c), 8.0f);
+  const Subdivision sub = subdivide(quads, vertices, colour, 0.6f, 5);
+  ASSERT_EQ(sub.replaced_quads.size(), 1u);
+  EXPECT_EQ(sub.triangles.size(), 32u * 3u);
+  // Every emitted corner carries the bilinear value at its position.
+  for (const ShadedVertex& v : sub.triangles) {
+    const float x = v.position.x, y = v.position.y;
+    const float bilinear = 16.0f * ((1 - x) * (1 - y) + x * y);
+    EXPECT_NEAR(v.radiosity.x, bilinear, 1e-4f) << x << "," << y;
+  }
+  EXPECT_TRUE(subdivide(quads, vertices, colour, 9.0f, 5).replaced_quads.empty()) << "below the threshold";
+  EXPECT_EQ(subdivide(quads, vertices, colour, 0.6f, 1).triangles.size(), 8u * 3u) << "depth limit";
 }
 
 TEST(Diagonals, TrianglesThatAreNotPairsAreLeftAlone) {

@@ -29,6 +29,9 @@ struct TwoRooms {
   // Vertex light scaled by 0.4 .. 1.6 along each rectangle's first edge (mean 1 over the grid's vertices),
   // so per-vertex patches differ from the flat polygon light of the coarse level. Needs subdivisions >= 2.
   bool light_gradient = false;
+  // Vertex light scaled 1.6 and 0.4 in a checkerboard over the grid: with one quad per rectangle, opposite
+  // corners match, so Gouraud triangles show 1.6 along the diagonal where the bilinear patch has 1.0.
+  bool light_twist = false;
   // Four cells (each room halved at y = 2) under a three-node tree; each room's PVS leaves out the other
   // room's copy of the shared wall, which faces away from it: conservative, and smaller than everything.
   bool four_cells = false;
