@@ -15,6 +15,7 @@ uniform float u_patch_weight;           // 0: coarse, 1: patches, between: the b
 uniform int u_circuit_count;
 uniform float u_levels[64];
 uniform float u_ambient;
+uniform vec4 u_clip_plane;  // the map view cuts away what is above the viewer's storey (GL_CLIP_DISTANCE0)
 out vec3 v_radiosity;
 
 vec3 mixed(samplerBuffer light, int base) {
@@ -32,6 +33,7 @@ void main() {
   vec3 coarse = u_patch_weight < 1.0 ? mixed(u_polygon_light, int(a_polygon) * u_circuit_count * 3) : vec3(0.0);
   v_radiosity = a_albedo * u_ambient + mix(coarse, fine, u_patch_weight);
   gl_Position = u_view_projection * vec4(a_position, 1.0);
+  gl_ClipDistance[0] = dot(u_clip_plane, vec4(a_position, 1.0));
 }
 )glsl";
 

@@ -46,6 +46,10 @@ struct Renderer::Impl {
   float glass_opacity = 0.25f;
   bool present_to_window = false;
   bool pvs_culling = true;
+  bool map_overlay = false;
+  float map_fraction = 0.35f;
+  GLint u_clip_plane = -1;
+  GLuint marker_vao = 0, marker_vbo = 0;
   FrameStats stats;
 
   // Adaptive refinement state: what the picture now shown was made from.
@@ -71,6 +75,8 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &refined_ibo);
     glDeleteBuffers(1, &shaded_vbo);
     glDeleteVertexArrays(1, &shaded_vao);
+    glDeleteBuffers(1, &marker_vbo);
+    glDeleteVertexArrays(1, &marker_vao);
     glDeleteVertexArrays(1, &refined_vao);
     glDeleteBuffers(1, &vbo);
     glDeleteVertexArrays(1, &vao);
@@ -92,6 +98,8 @@ struct Renderer::Impl {
   void draw_scene(const View& view, int width, int height, const DrawOptions& options);
   void present(int width, int height) const;
   void choose_diagonals();
+  void draw_map(const View& view, int width, int height);
+  void draw_shaded(GLuint vao, GLsizei count, const glm::mat4& view_projection);
 };
 
 namespace {
@@ -106,6 +114,22 @@ void main() {
   gl_Position = u_view_projection * vec4(a_position, 1.0);
 }
 )glsl";
+
+// A VAO over a buffer of ShadedVertex.
+void make_shaded_vao(GLuint& vao, GLuint& vbo) {
+  glGenVertexArrays(1, &vao);
+  glGenBuffers(1, &vbo);
+  glBindVertexArray(vao);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ShadedVertex),
+                        reinterpret_cast<const void*>(offsetof(ShadedVertex, position)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(ShadedVertex),
+                        reinterpret_cast<const void*>(offsetof(ShadedVertex, radiosity)));
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
 
 // PLGT when the bundle has it; otherwise each polygon's plain mean of its vertices' light, so the coarse
 // level always exists.
@@ -163,6 +187,7 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   r.u_inv_exposure = r.program.uniform("u_inv_exposure");
   r.u_opacity = r.program.uniform("u_opacity");
   r.u_patch_weight = r.program.uniform("u_patch_weight");
+  r.u_clip_plane = r.program.uniform("u_clip_plane");
   // Unused (and so absent) when the shader has no circuits to loop over: not an error then.
   r.u_levels = glGetUniformLocation(r.program.id(), "u_levels[0]");
   r.u_polygon_light = glGetUniformLocation(r.program.id(), "u_polygon_light");
@@ -239,6 +264,12 @@ std::span<const float> Renderer::dimmers() const {
 void Renderer::set_backface_culling(bool enabled) {
   if (impl_->culling != enabled) impl_->restart = true;
   impl_->culling = enabled;
+}
+void Renderer::set_map_overlay(bool enabled, float fraction) {
+  fraction = std::isfinite(fraction) ? std::clamp(fraction, 0.05f, 1.0f) : 0.35f;
+  if (impl_->map_overlay != enabled || impl_->map_fraction != fraction) impl_->restart = true;
+  impl_->map_overlay = enabled;
+  impl_->map_fraction = fraction;
 }
 void Renderer::set_pvs_culling(bool enabled) {
   if (impl_->pvs_culling != enabled) impl_->restart = true;
@@ -339,6 +370,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glUniform1f(r.u_ambient, meta.ambient);
     glUniform1f(r.u_inv_exposure, meta.exposure > 0.0f ? 1.0f / meta.exposure : 1.0f);
     glUniform1f(r.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));
+    glUniform4f(r.u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
     glUniform1i(r.u_light, 0);
@@ -357,16 +389,8 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     if (options.diagonals && r.shaded_vertices > 0) {
       // The subdivided quads (their own triangles in the refined index buffer are degenerate). Drawn for
       // every cell: they are few, and only while still.
-      glUseProgram(r.shaded_program->id());
-      glUniformMatrix4fv(r.shaded_program->uniform("u_view_projection"), 1, GL_FALSE,
-                         &view_projection_matrix[0][0]);
-      glUniform1f(r.shaded_program->uniform("u_inv_exposure"),
-                  meta.exposure > 0.0f ? 1.0f / meta.exposure : 1.0f);
-      glUniform1f(r.shaded_program->uniform("u_opacity"), 1.0f);
-      glBindVertexArray(r.shaded_vao);
-      glDrawArrays(GL_TRIANGLES, 0, r.shaded_vertices);
+      r.draw_shaded(r.shaded_vao, r.shaded_vertices, view_projection_matrix);
       glBindVertexArray(options.diagonals ? r.refined_vao : r.vao);
-      glUseProgram(r.program.id());
     }
     if (!list.glass.empty()) {
       // After everything opaque, depth-tested but not written, so glass behind glass still shows. Alpha
@@ -379,6 +403,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
       glDepthMask(GL_TRUE);
       glDisable(GL_BLEND);
     }
+    if (r.map_overlay) r.draw_map(view, width, height);
     glBindVertexArray(0);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
@@ -395,6 +420,76 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.draw_ranges = std::uint32_t(list.opaque.counts.size() + list.glass.counts.size());
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
   ++r.stats.frames_drawn;
+}
+
+// Leaves the scene program bound, as the caller had it.
+void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
+                                 const glm::mat4& view_projection_matrix) {
+  const float exposure = bundle.meta().exposure;
+  glUseProgram(shaded_program->id());
+  glUniformMatrix4fv(shaded_program->uniform("u_view_projection"), 1, GL_FALSE,
+                     &view_projection_matrix[0][0]);
+  glUniform1f(shaded_program->uniform("u_inv_exposure"), exposure > 0.0f ? 1.0f / exposure : 1.0f);
+  glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
+  glBindVertexArray(shaded_vao_id);
+  glDrawArrays(GL_TRIANGLES, 0, count);
+  glUseProgram(program.id());
+}
+
+// Called inside the scene pass (program, light textures and uniforms bound). Top-down orthographic view of
+// the model's bounds in a square at the top-right corner, cut at 0.5 m above the eye so upper storeys and
+// ceilings do not hide the floor plan; floors face up, so back-face culling keeps them.
+void Renderer::Impl::draw_map(const View& view, int width, int height) {
+  const auto& m = bundle.meta();
+  const int side = std::max(16, int(float(height) * map_fraction));
+  const int x0 = std::max(0, width - side - 8), y0 = std::max(0, height - side - 8);
+  const glm::vec3 lo(m.bounds_min[0], m.bounds_min[1], m.bounds_min[2]);
+  const glm::vec3 hi(m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);
+  const glm::vec2 centre = 0.5f * (glm::vec2(lo) + glm::vec2(hi));
+  const float half = 0.5f * std::max({hi.x - lo.x, hi.y - lo.y, 1.0f}) * 1.05f;
+  const glm::mat4 projection = glm::ortho(-half, half, -half, half, 0.0f, hi.z - lo.z + 4.0f);
+  const glm::mat4 look =
+      glm::lookAt(glm::vec3(centre, hi.z + 2.0f), glm::vec3(centre, lo.z), glm::vec3(0, 1, 0));
+  const glm::mat4 plan = projection * look;
+
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x0, y0, side, side);
+  glViewport(x0, y0, side, side);
+  glClearColor(0.05f, 0.05f, 0.08f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glEnable(GL_CLIP_DISTANCE0);
+  glUniformMatrix4fv(u_view_projection, 1, GL_FALSE, &plan[0][0]);
+  glUniform4f(u_clip_plane, 0.0f, 0.0f, -1.0f, float(view.eye.z) + 0.5f);
+  glUniform1f(u_patch_weight, 0.0f);  // flat polygon light: a plan, not a picture
+  glUniform1f(u_opacity, 1.0f);
+  glBindVertexArray(vao);
+  if (!all_list) all_list = build_draw_list_all(bundle.polygons());
+  if (!all_list->opaque.empty())
+    glMultiDrawElements(GL_TRIANGLES, all_list->opaque.counts.data(), GL_UNSIGNED_INT,
+                        reinterpret_cast<const void* const*>(all_list->opaque.byte_offsets.data()),
+                        GLsizei(all_list->opaque.counts.size()));
+  glDisable(GL_CLIP_DISTANCE0);
+  glUniform4f(u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
+
+  // The viewer: a red arrow above everything, pointing where they look.
+  if (!shaded_program) shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader);
+  if (!marker_vao) make_shaded_vao(marker_vao, marker_vbo);
+  glm::vec2 f(view.forward.x, view.forward.y);
+  f = glm::length(f) > 1e-6f ? glm::normalize(f) : glm::vec2(1, 0);
+  const glm::vec2 side_dir(-f.y, f.x), eye(view.eye.x, view.eye.y);
+  const float size = 0.06f * half, z = hi.z + 1.0f;
+  const glm::vec3 red(m.exposure > 0.0f ? m.exposure : 1.0f, 0.0f, 0.0f);
+  const ShadedVertex arrow[3] = {{glm::vec3(eye + f * size, z), red},
+                                 {glm::vec3(eye - f * size * 0.6f + side_dir * size * 0.6f, z), red},
+                                 {glm::vec3(eye - f * size * 0.6f - side_dir * size * 0.6f, z), red}};
+  glBindBuffer(GL_ARRAY_BUFFER, marker_vbo);
+  glBufferData(GL_ARRAY_BUFFER, sizeof(arrow), arrow, GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glDisable(GL_CULL_FACE);  // whichever way the arrow winds from above
+  draw_shaded(marker_vao, 3, plan);
+  glDisable(GL_SCISSOR_TEST);
+  glViewport(0, 0, width, height);
 }
 
 // The mix is computed here exactly as the vertex shader does, once per diagonal choice (not per frame).
@@ -433,17 +528,7 @@ void Renderer::Impl::choose_diagonals() {
   if (!sub.triangles.empty()) {
     if (!shaded_program) {
       shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader);
-      glGenVertexArrays(1, &shaded_vao);
-      glGenBuffers(1, &shaded_vbo);
-      glBindVertexArray(shaded_vao);
-      glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
-      glEnableVertexAttribArray(0);
-      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ShadedVertex),
-                            reinterpret_cast<const void*>(offsetof(ShadedVertex, position)));
-      glEnableVertexAttribArray(1);
-      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(ShadedVertex),
-                            reinterpret_cast<const void*>(offsetof(ShadedVertex, radiosity)));
-      glBindVertexArray(0);
+      make_shaded_vao(shaded_vao, shaded_vbo);
     }
     glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sub.triangles.size() * sizeof(ShadedVertex)),

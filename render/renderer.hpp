@@ -78,6 +78,9 @@ class Renderer {
   void set_present_to_window(bool enabled);
   // Glass polygons are blended over what is behind them with this opacity (0..1, default 0.25), in display
   // (sRGB) values: glass blocks walking, not seeing.
+  // The paper's floor plan for navigation: a view from above of everything at or below the viewer's storey,
+  // with the viewer as a red arrow, drawn over the top-right corner (`fraction` of the frame's height).
+  void set_map_overlay(bool enabled, float fraction = 0.35f);
   void set_glass_opacity(float opacity);
   [[nodiscard]] float glass_opacity() const;
   // Off: every polygon is drawn whatever the eye's cell (for comparison and benchmarks). On by default.
