@@ -14,7 +14,7 @@
 namespace walk::render {
 namespace {
 
-constexpr const char* kAccepted = "auto, osmesa, egl, glfw";
+constexpr const char* kAccepted = "auto, osmesa, egl, glfw, gbm";
 
 #if WALK_WITH_OSMESA
 constexpr bool kHaveOSMesa = true;
@@ -40,6 +40,12 @@ bool compiled_in(BackendKind kind) {
       return kHaveEGL;
     case BackendKind::GLFW:
       return kHaveGLFW;
+    case BackendKind::GBM:
+#if WALK_WITH_GBM
+      return true;
+#else
+      return false;
+#endif
     case BackendKind::Auto:
       return true;
   }
@@ -60,6 +66,10 @@ std::unique_ptr<Backend> create_one(BackendKind kind, const BackendOptions& opti
     case BackendKind::GLFW:
       return detail::make_glfw_backend(options);
 #endif
+#if WALK_WITH_GBM
+    case BackendKind::GBM:
+      return detail::make_gbm_backend(options);
+#endif
     default:
       break;
   }
@@ -67,6 +77,7 @@ std::unique_ptr<Backend> create_one(BackendKind kind, const BackendOptions& opti
               "' is not compiled into this build; reconfigure with -DWALK_WITH_" +
               (kind == BackendKind::OSMesa ? "OSMESA"
                : kind == BackendKind::EGL  ? "EGL"
+               : kind == BackendKind::GBM  ? "GBM"
                                            : "GLFW") +
               "=ON or choose another backend (" + kAccepted + ")");
 }
@@ -83,6 +94,7 @@ BackendKind parse_backend_kind(const std::string& text) {
   if (text == "auto") return BackendKind::Auto;
   if (text == "osmesa") return BackendKind::OSMesa;
   if (text == "egl") return BackendKind::EGL;
+  if (text == "gbm") return BackendKind::GBM;
   if (text == "glfw") return BackendKind::GLFW;
   throw Error("unknown render backend '" + text + "'; accepted values: " + kAccepted);
 }
@@ -95,6 +107,8 @@ const char* backend_kind_name(BackendKind kind) {
       return "osmesa";
     case BackendKind::EGL:
       return "egl";
+    case BackendKind::GBM:
+      return "gbm";
     case BackendKind::GLFW:
       return "glfw";
   }

@@ -6,9 +6,10 @@
 
 namespace walk::render {
 
-enum class BackendKind { Auto, OSMesa, EGL, GLFW };
+// GBM: EGL on GBM/KMS, straight to a display with no compositor; never chosen by Auto, only by config.
+enum class BackendKind { Auto, OSMesa, EGL, GLFW, GBM };
 
-// "auto", "osmesa", "egl", "glfw"; throws walk::Error naming the accepted values otherwise.
+// "auto", "osmesa", "egl", "glfw", "gbm"; throws walk::Error naming the accepted values otherwise.
 [[nodiscard]] BackendKind parse_backend_kind(const std::string& text);
 [[nodiscard]] const char* backend_kind_name(BackendKind kind);
 
@@ -17,7 +18,8 @@ struct BackendOptions {
   int width = 1280;
   int height = 720;
   bool fullscreen = false;
-  int monitor = 0;
+  int monitor = 0;         // GLFW full screen and GBM: which connected display
+  std::string drm_device;  // GBM: e.g. /dev/dri/card1; empty: the first card
   std::string title = "Walkthrough";
 };
 

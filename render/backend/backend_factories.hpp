@@ -12,6 +12,9 @@ std::unique_ptr<Backend> make_osmesa_backend(const BackendOptions& options);
 #if WALK_WITH_EGL
 std::unique_ptr<Backend> make_egl_backend(const BackendOptions& options);
 #endif
+#if WALK_WITH_GBM
+std::unique_ptr<Backend> make_gbm_backend(const BackendOptions& options);
+#endif
 #if WALK_WITH_GLFW
 std::unique_ptr<Backend> make_glfw_backend(const BackendOptions& options);
 #endif

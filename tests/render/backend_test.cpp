@@ -13,7 +13,8 @@ namespace walk::render::test {
 namespace {
 
 TEST(BackendNames, RoundTrip) {
-  for (BackendKind kind : {BackendKind::Auto, BackendKind::OSMesa, BackendKind::EGL, BackendKind::GLFW})
+  for (BackendKind kind :
+       {BackendKind::Auto, BackendKind::OSMesa, BackendKind::EGL, BackendKind::GLFW, BackendKind::GBM})
     EXPECT_EQ(parse_backend_kind(backend_kind_name(kind)), kind);
 }
 
@@ -25,6 +26,25 @@ TEST(BackendNames, UnknownNameListsTheAcceptedValues) {
     const std::string message = e.what();
     EXPECT_NE(message.find("'vulkan'"), std::string::npos) << message;
     EXPECT_NE(message.find("auto, osmesa, egl, glfw"), std::string::npos) << message;
+  }
+}
+
+// GBM/KMS cannot run here (no /dev/dri); what must hold everywhere is a clear error naming the device.
+TEST(Backends, GbmWithoutADisplayDeviceIsAClearError) {
+  BackendOptions options;
+  options.kind = BackendKind::GBM;
+  options.drm_device = "/nonexistent/dri/card7";
+  try {
+    (void)Backend::create(options);
+    FAIL() << "gbm started on a device that does not exist";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+#if WALK_WITH_GBM
+    EXPECT_NE(message.find("/nonexistent/dri/card7"), std::string::npos) << message;
+#else
+    EXPECT_NE(message.find("WALK_WITH_GBM"), std::string::npos) << message;
+#endif
+    EXPECT_NE(message.find("another backend"), std::string::npos) << message;
   }
 }
 
