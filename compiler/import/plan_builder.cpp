@@ -252,12 +252,10 @@ void place_window(const PlanWindow& w, dvec2 q, const std::vector<Edge>& edges, 
   out.wall(a, b, w.sill, w.head, name, name, model::Role::Glass);
   out.wall(b2, a2, w.sill, w.head, name, name, model::Role::Glass);
   // Reveals facing into the opening: sides, sill (up) and head (down).
-  out.wall(a2, a, w.sill, w.head, name, name + " reveal");
-  out.wall(b, b2, w.sill, w.head, name, name + " reveal");
-  out.add({out.at(a2, w.sill), out.at(b2, w.sill), out.at(b, w.sill), out.at(a, w.sill)}, name,
-          name + " sill");
-  out.add({out.at(a, w.head), out.at(b, w.head), out.at(b2, w.head), out.at(a2, w.head)}, name,
-          name + " head");
+  out.wall(a2, a, w.sill, w.head, name, "reveal");
+  out.wall(b, b2, w.sill, w.head, name, "reveal");
+  out.add({out.at(a2, w.sill), out.at(b2, w.sill), out.at(b, w.sill), out.at(a, w.sill)}, name, "sill");
+  out.add({out.at(a, w.head), out.at(b, w.head), out.at(b2, w.head), out.at(a2, w.head)}, name, "head");
   ++stats.windows;
 }
 
@@ -364,6 +362,9 @@ model::Model build_plan(const std::vector<DxfWire>& wires, const PlanOptions& o,
     out.add({out.at(d.at(d.s0, 0), o.door_height), out.at(d.at(d.s1, 0), o.door_height),
              out.at(d.at(d.s1, d.width), o.door_height), out.at(d.at(d.s0, d.width), o.door_height)},
             name, "lintel");
+    out.add({out.at(d.at(d.s0, 0), 0.0), out.at(d.at(d.s0, d.width), 0.0), out.at(d.at(d.s1, d.width), 0.0),
+             out.at(d.at(d.s1, 0), 0.0)},
+            name, "threshold");  // the floor under the doorway, which no room's floor covers
     out.wall(d.at(d.s0, 0), d.at(d.s0, d.width), 0.0, o.door_height, name, name, model::Role::Opening);
     out.wall(d.at(d.s1, d.width), d.at(d.s1, 0), 0.0, o.door_height, name, name, model::Role::Opening);
   }

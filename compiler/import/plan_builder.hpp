@@ -2,9 +2,10 @@
 // A 2D floor plan to a 3D building. The plan's walls are closed outlines (LINE/LWPOLYLINE wires, both faces
 // of each wall drawn); doorways are gaps between two wall ends ("jambs": short outline edges facing each
 // other across the gap). Walls are extruded to `wall_height`; each doorway is closed above `door_height` by
-// a lintel, and gets an Opening polygon on each face of the wall, which the openings stage cuts out; every
-// region enclosed by walls and doorways is a room with a floor and a ceiling. Windows are placed where the
-// scene config says, as glass on both faces of the nearest wall plus the reveals between them.
+// a lintel, gets a threshold (floor) and an Opening polygon on each face of the wall, which the openings
+// stage cuts out; every region enclosed by walls and doorways is a room with a floor and a ceiling. Windows
+// are placed where the scene config says, as glass ("window N") on both faces of the nearest wall plus the
+// reveals between them ("reveal", "sill", "head").
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -58,11 +58,14 @@ TEST(PlanBuilder, TwoRoomsDoorwaysAndAWindow) {
   EXPECT_EQ(names["ceiling"], 2);
   EXPECT_EQ(names["jamb"], 4);
   EXPECT_EQ(names["lintel"], 2);
+  EXPECT_EQ(names["threshold"], 2);
+  EXPECT_EQ(names["window 1"], 2);  // the panes; the reveals have names of their own
+  EXPECT_EQ(names["reveal"] + names["sill"] + names["head"], 4);
   EXPECT_EQ(roles[model::Role::Opening], 4);  // a doorway on each face of its wall
   EXPECT_EQ(roles[model::Role::Glass], 2);
   for (const auto& p : m.polygons) {
     const Vec3 n = polygon_normal(p.vertices);
-    if (p.name == "floor") EXPECT_GT(n.z, 0.999);
+    if (p.name == "floor" || p.name == "threshold") EXPECT_GT(n.z, 0.999);
     if (p.name == "ceiling" || p.name == "lintel") EXPECT_LT(n.z, -0.999);
     if (p.name == "lintel") EXPECT_NEAR(p.vertices[0].z, 2.0, 1e-12);
     if (p.role == model::Role::Opening) {
