@@ -20,7 +20,7 @@ FrameGovernor::FrameGovernor(double target_hz)
 
 void FrameGovernor::record_moving(std::uint32_t cell, MovingLevel level, double ms) {
   if (!(ms >= 0.0) || !std::isfinite(ms)) return;
-  auto [it, fresh] = moving_.try_emplace(cell, std::array<double, 2>{-1.0, -1.0});
+  auto [it, fresh] = moving_.try_emplace(cell, std::array<double, kMovingLevels>{-1.0, -1.0, -1.0});
   double& slot = it->second[std::size_t(level)];
   slot = blend(slot, ms);
 }
@@ -35,11 +35,16 @@ double FrameGovernor::estimate(std::uint32_t cell, MovingLevel level) const {
 }
 
 MovingLevel FrameGovernor::choose_moving(std::uint32_t cell) const {
-  const double fine = estimate(cell, MovingLevel::Patches);
-  if (fine >= 0.0) return fine <= kHeadroom * budget_ms_ ? MovingLevel::Patches : MovingLevel::Coarse;
-  const double coarse = estimate(cell, MovingLevel::Coarse);
-  // Untried patches: try them when coarse is known to leave a quarter of the budget, or nothing is known.
-  return coarse < 0.0 || coarse <= 0.75 * budget_ms_ ? MovingLevel::Patches : MovingLevel::Coarse;
+  for (int l = kMovingLevels - 1; l > 0; --l) {
+    const double e = estimate(cell, MovingLevel(l));
+    const double below = estimate(cell, MovingLevel(l - 1));
+    if (e < 0.0) {
+      if (below < 0.0 || below <= 0.75 * budget_ms_) return MovingLevel(l);
+    } else if (e <= kHeadroom * budget_ms_) {
+      return MovingLevel(l);
+    }
+  }
+  return MovingLevel::Reduced;
 }
 
 int FrameGovernor::samples_per_frame() const {

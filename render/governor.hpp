@@ -8,7 +8,10 @@
 
 namespace walk::render {
 
-enum class MovingLevel : std::uint8_t { Coarse = 0, Patches = 1 };
+// Cheapest first. Reduced: coarse light drawn at half resolution and scaled up (on llvmpipe, fill is most of
+// a frame's cost, so this is the level that buys time); Coarse: flat polygon light; Patches: per vertex.
+enum class MovingLevel : std::uint8_t { Reduced = 0, Coarse = 1, Patches = 2 };
+inline constexpr int kMovingLevels = 3;
 
 class FrameGovernor {
  public:
@@ -18,8 +21,8 @@ class FrameGovernor {
   void record_moving(std::uint32_t cell, MovingLevel level, double ms);
   // One accumulation sample took `ms`.
   void record_sample(double ms);
-  // Patches when their estimate in this cell fits the budget with 10 % headroom (an untried level is tried
-  // once when the coarse level left room); coarse otherwise.
+  // The best level whose estimate in this cell fits the budget with 10 % headroom. An untried level is tried
+  // unless the level below it is known to leave less than a quarter of the budget; Reduced is the floor.
   [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell) const;
   // While still: how many accumulation samples fit in one frame (at least 1).
   [[nodiscard]] int samples_per_frame() const;
@@ -28,7 +31,8 @@ class FrameGovernor {
 
  private:
   double budget_ms_;
-  std::unordered_map<std::uint32_t, std::array<double, 2>> moving_;  // per cell, per level; < 0 unknown
+  std::unordered_map<std::uint32_t, std::array<double, kMovingLevels>>
+      moving_;  // per cell, per level; < 0 unknown
   double sample_ms_ = -1.0;
 };
 

@@ -39,6 +39,7 @@ struct Renderer::Impl {
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, light_buffer = 0, light_texture = 0,
          polygon_buffer = 0, polygon_texture = 0;
   Framebuffer framebuffer;
+  Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
   std::vector<float> levels;
   std::vector<std::optional<DrawList>> cell_lists;  // built on first visit
   std::optional<DrawList> all_list;
@@ -57,6 +58,7 @@ struct Renderer::Impl {
   RefineSchedule schedule;
   FrameGovernor governor;
   std::optional<MovingLevel> pinned_level;
+  MovingLevel moving_level = MovingLevel::Patches;
   std::vector<JitterSample> jitter = jitter_pattern(schedule.settings().aa_samples);
   std::optional<View> shown_view;
   int shown_width = 0, shown_height = 0;
@@ -334,7 +336,16 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
         glm::vec3(2.0f * options.jitter_x / float(width), 2.0f * options.jitter_y / float(height), 0.0f));
     view_projection_matrix = shift * view_projection_matrix;
   }
-  r.framebuffer.ensure_size(width, height);
+  // Reduced: the same frame into a smaller target, scaled up below. Fill dominates llvmpipe's frame time.
+  const int full_width = width, full_height = height;
+  const bool reduced = options.resolution < 1.0f;
+  if (reduced) {
+    const float scale = std::max(0.1f, options.resolution);
+    width = std::max(1, int(float(width) * scale));
+    height = std::max(1, int(float(height) * scale));
+  }
+  Framebuffer& target = reduced ? r.reduced_framebuffer : r.framebuffer;
+  target.ensure_size(width, height);
 
   // The eye's cell decides what is drawn; without cells (or outside them all) everything is.
   std::uint32_t cell = FrameStats::kNoCell;
@@ -345,7 +356,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   }
   const DrawList& list = r.list_for(r.pvs_culling ? cell : FrameStats::kNoCell);
 
-  glBindFramebuffer(GL_FRAMEBUFFER, r.framebuffer.id());
+  glBindFramebuffer(GL_FRAMEBUFFER, target.id());
   glViewport(0, 0, width, height);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClearDepth(1.0);
@@ -411,6 +422,12 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     glUseProgram(0);
   }
+  if (reduced) {
+    r.framebuffer.ensure_size(full_width, full_height);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, target.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.framebuffer.id());
+    glBlitFramebuffer(0, 0, width, height, 0, 0, full_width, full_height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl("drawing a frame");
 
@@ -419,6 +436,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.triangles_drawn = list.triangles;
   r.stats.draw_ranges = std::uint32_t(list.opaque.counts.size() + list.glass.counts.size());
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
+  r.stats.resolution = reduced ? std::max(0.1f, options.resolution) : 1.0f;
   ++r.stats.frames_drawn;
 }
 
@@ -554,8 +572,8 @@ bool Renderer::refine(const View& view, int width, int height) {
     return r.bundle.locate_cell(eye);
   };
   if (moved) {
-    const MovingLevel level = r.pinned_level.value_or(r.governor.choose_moving(cell_of()));
-    r.schedule.view_changed(level == MovingLevel::Patches ? 1.0f : 0.0f);
+    r.moving_level = r.pinned_level.value_or(r.governor.choose_moving(cell_of()));
+    r.schedule.view_changed(r.moving_level == MovingLevel::Patches ? 1.0f : 0.0f);
   } else if (relit) {
     r.schedule.light_changed();
   }
@@ -572,13 +590,13 @@ bool Renderer::refine(const View& view, int width, int height) {
 
   if (step.stage == RefineStage::Diagonals) r.choose_diagonals();
   if (step.stage != RefineStage::Accumulating) {
-    r.draw_scene(view, width, height, DrawOptions{step.patch_weight, 0.0f, 0.0f, step.diagonals});
+    const bool moving = step.stage == RefineStage::Moving;
+    const float resolution = moving && r.moving_level == MovingLevel::Reduced ? 0.5f : 1.0f;
+    r.draw_scene(view, width, height, DrawOptions{step.patch_weight, 0.0f, 0.0f, resolution, step.diagonals});
     r.stats.samples = 1;
-    if (step.stage == RefineStage::Moving) {
+    if (moving) {
       glFinish();
-      r.governor.record_moving(r.stats.cell,
-                               step.patch_weight > 0.0f ? MovingLevel::Patches : MovingLevel::Coarse,
-                               milliseconds_since(start));
+      r.governor.record_moving(r.stats.cell, r.moving_level, milliseconds_since(start));
     }
   } else {
     if (!r.accumulator) r.accumulator.emplace();
@@ -589,7 +607,7 @@ bool Renderer::refine(const View& view, int width, int height) {
     int drawn = 0;
     for (;;) {
       const JitterSample& j = r.jitter[std::size_t(step.sample) % r.jitter.size()];
-      r.draw_scene(view, width, height, DrawOptions{1.0f, j.dx, j.dy, step.diagonals});
+      r.draw_scene(view, width, height, DrawOptions{1.0f, j.dx, j.dy, 1.0f, step.diagonals});
       r.accumulator->add(r.framebuffer.colour_texture(), j.weight);
       if (++drawn >= budget || r.schedule.stage() != RefineStage::Accumulating) break;
       step = r.schedule.next();

@@ -40,7 +40,8 @@ struct DrawOptions {
   float patch_weight = 1.0f;  // 0: flat polygon light (PLGT, the coarse display), 1: per-vertex patches
   float jitter_x = 0.0f;      // sub-pixel offset of the image, pixels (anti-aliasing samples)
   float jitter_y = 0.0f;
-  bool diagonals = false;  // quads split along the diagonals last chosen by colour (refine() chooses them)
+  float resolution = 1.0f;  // below 1: drawn at this fraction of the size and scaled up (moving, Reduced)
+  bool diagonals = false;   // quads split along the diagonals last chosen by colour (refine() chooses them)
 };
 
 struct FrameStats {
@@ -54,6 +55,7 @@ struct FrameStats {
       0;  // frames this renderer has drawn (draw() calls and refine() steps that drew)
   RefineStage stage = RefineStage::Moving;  // what the last refine() step did (Idle: drew nothing)
   float patch_weight = 1.0f;                // of the last frame drawn
+  float resolution = 1.0f;                  // of the last frame drawn (0.5 at the Reduced moving level)
   int samples = 1;                          // samples accumulated in the picture now shown
   std::uint32_t quads_flipped = 0;     // quads split differently from the bundle at the last diagonal choice
   std::uint32_t quads_subdivided = 0;  // quads drawn as bilinear sub-quads at the last choice

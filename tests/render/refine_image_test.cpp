@@ -181,6 +181,25 @@ TEST_P(RefineImageTest, BilinearSubdivisionWhereTheTwistIsLarge) {
   }
 }
 
+// The Reduced moving level draws at half size and scales up: a flat wall keeps its colour, the frame its
+// size, and the next still frame is full resolution again.
+TEST_P(RefineImageTest, ReducedMovingLevelIsHalfResolution) {
+  TwoRooms scene;
+  auto bundle = open_two_rooms(scene, "reduced");
+  Renderer renderer(*bundle);
+  renderer.set_refine_settings({.blend_steps = 2, .aa_samples = 1});
+  renderer.set_moving_level(MovingLevel::Reduced);
+  const View view = looking_along_x(-1.0);
+  ASSERT_TRUE(renderer.refine(view, kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().resolution, 0.5f);
+  const Image moving = renderer.read_pixels(kWidth, kHeight);
+  const glm::dvec3 wall = radiosity(scene, false, scene.wall_factor, 1, 1);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(int(centre(moving)[k]), expected_byte(wall[k], scene.exposure), 2) << "channel " << k;
+  ASSERT_TRUE(renderer.refine(view, kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().resolution, 1.0f);
+}
+
 INSTANTIATE_TEST_SUITE_P(Headless, RefineImageTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 

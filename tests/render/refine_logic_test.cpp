@@ -97,6 +97,19 @@ TEST(FrameGovernor, ChoosesPatchesOnlyWhereTheyFitPerCell) {
   EXPECT_EQ(governor.choose_moving(0), MovingLevel::Patches);
 }
 
+TEST(FrameGovernor, HalfResolutionIsTheFloorWhenCoarseIsTooSlow) {
+  FrameGovernor governor(60.0);
+  governor.record_moving(4, MovingLevel::Patches, 40.0);
+  governor.record_moving(4, MovingLevel::Coarse, 25.0);
+  EXPECT_EQ(governor.choose_moving(4), MovingLevel::Reduced);
+  governor.record_moving(4, MovingLevel::Reduced, 40.0);
+  EXPECT_EQ(governor.choose_moving(4), MovingLevel::Reduced) << "nothing cheaper: stay at the floor";
+  // Reduced known cheap and coarse never tried: try coarse.
+  governor.record_moving(5, MovingLevel::Patches, 40.0);
+  governor.record_moving(5, MovingLevel::Reduced, 4.0);
+  EXPECT_EQ(governor.choose_moving(5), MovingLevel::Coarse);
+}
+
 TEST(FrameGovernor, SamplesPerFrameFollowTheSampleCost) {
   FrameGovernor governor(60.0);
   EXPECT_EQ(governor.samples_per_frame(), 1);
