@@ -90,12 +90,17 @@ std::optional<model::Luminaire> panel_for_group(const model::Model& model, std::
 
 LuminaireStats add_luminaires(model::Model& model, const SceneConfig& config) {
   LuminaireStats stats;
-  std::vector<std::string> default_circuit;
+  // Luminaires the importer found keep their circuit (and its default level) unless a rule claims them.
+  const std::vector<model::Circuit> imported_circuits = model.circuits;
+  std::vector<model::Circuit> default_circuit;
+  for (const auto& l : model.luminaires)
+    default_circuit.push_back(l.circuit < imported_circuits.size() ? imported_circuits[l.circuit]
+                                                                   : model::Circuit{"imported", 1.0});
   for (std::size_t i = 0; i < config.luminaires.size(); ++i) {
     model::Luminaire l = config.luminaires[i];
     l.position -= model.origin;  // config positions are world coordinates
     model.luminaires.push_back(l);
-    default_circuit.push_back(config.luminaire_circuits[i]);
+    default_circuit.push_back({config.luminaire_circuits[i], 1.0});
     ++stats.explicit_panels;
   }
   if (config.panels.enabled) {
@@ -110,24 +115,23 @@ LuminaireStats add_luminaires(model::Model& model, const SceneConfig& config) {
         continue;
       }
       model.luminaires.push_back(*panel);
-      default_circuit.push_back(model.groups[g]);
+      default_circuit.push_back({model.groups[g], 1.0});
       ++stats.added_per_group;
     }
   }
   // Circuits: the first [[circuits]] rule matching a luminaire's name, else its default circuit.
+  model.circuits.clear();
   std::map<std::string, std::uint32_t> circuit_index;
   for (std::size_t i = 0; i < model.luminaires.size(); ++i) {
-    std::string name = default_circuit[i];
-    double level = 1.0;
+    model::Circuit circuit = default_circuit[i];
     for (const auto& rule : config.circuits) {
       if (std::regex_search(model.luminaires[i].name, rule.luminaires)) {
-        name = rule.name;
-        level = rule.default_level;
+        circuit = {rule.name, rule.default_level};
         break;
       }
     }
-    auto [it, added] = circuit_index.emplace(name, static_cast<std::uint32_t>(model.circuits.size()));
-    if (added) model.circuits.push_back({name, level});
+    auto [it, added] = circuit_index.emplace(circuit.name, static_cast<std::uint32_t>(model.circuits.size()));
+    if (added) model.circuits.push_back(circuit);
     model.luminaires[i].circuit = it->second;
   }
   return stats;
