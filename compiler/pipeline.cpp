@@ -210,8 +210,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   }
   {
     StageTimer t(stages, "luminaires");
-    if (!config.panels.enabled && config.luminaires.empty()) {
-      t.skipped("scene names no luminaires");
+    if (!config.panels.enabled && config.luminaires.empty() && config.circuits.empty()) {
+      t.skipped("scene adds no luminaires and regroups no circuits");
     } else {
       const auto s = add_luminaires(model, config);
       t.done(model.groups.size(), model.luminaires.size(),
