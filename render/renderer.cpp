@@ -40,6 +40,11 @@ struct Renderer::Impl {
          polygon_buffer = 0, polygon_texture = 0;
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
+  // Coarse light: PLGT per circuit kept here, mixed on the CPU when the levels change (polygons x circuits,
+  // a few thousand multiply-adds) so the coarse vertex stage fetches 3 values instead of 3 per circuit.
+  std::vector<float> polygon_light;
+  std::vector<float> polygon_mixed_levels{-1.0f};  // levels of the mix in polygon_buffer; -1: none yet
+  void update_polygon_mix();
   std::vector<float> levels;
   std::vector<std::optional<DrawList>> cell_lists;  // built on first visit
   std::optional<DrawList> all_list;
@@ -238,11 +243,12 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   glGenTextures(1, &r.light_texture);
   glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.light_buffer);
-  const std::vector<float> coarse = polygon_light(bundle);
+  r.polygon_light = polygon_light(bundle);
   glGenBuffers(1, &r.polygon_buffer);
   glBindBuffer(GL_TEXTURE_BUFFER, r.polygon_buffer);
-  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<std::size_t>(coarse.size() * sizeof(float), 4)),
-               coarse.empty() ? nullptr : coarse.data(), GL_STATIC_DRAW);
+  glBufferData(GL_TEXTURE_BUFFER,
+               GLsizeiptr(std::max<std::size_t>(bundle.polygons().size() * 3 * sizeof(float), 4)), nullptr,
+               GL_DYNAMIC_DRAW);
   glGenTextures(1, &r.polygon_texture);
   glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.polygon_buffer);
@@ -371,6 +377,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glDisable(GL_CULL_FACE);
   }
 
+  if (options.patch_weight < 1.0f || map_overlay) update_polygon_mix();
   if (!list.opaque.empty() || !list.glass.empty()) {
     const auto& meta = r.bundle.meta();
     glUseProgram(r.program.id());
@@ -438,6 +445,19 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
   r.stats.resolution = reduced ? std::max(0.1f, options.resolution) : 1.0f;
   ++r.stats.frames_drawn;
+}
+
+void Renderer::Impl::update_polygon_mix() {
+  if (polygon_mixed_levels == levels) return;
+  const std::size_t circuits = levels.size(), count = bundle.polygons().size();
+  std::vector<float> mixed(std::max<std::size_t>(count * 3, 1), 0.0f);
+  for (std::size_t p = 0; p < count; ++p)
+    for (std::size_t c = 0; c < circuits; ++c)
+      for (int k = 0; k < 3; ++k) mixed[p * 3 + k] += levels[c] * polygon_light[(p * circuits + c) * 3 + k];
+  glBindBuffer(GL_TEXTURE_BUFFER, polygon_buffer);
+  glBufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(mixed.size() * sizeof(float)), mixed.data());
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  polygon_mixed_levels = levels;
 }
 
 // Leaves the scene program bound, as the caller had it.
