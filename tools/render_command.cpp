@@ -24,6 +24,8 @@ struct RenderArgs {
   std::string backend = "auto";
   std::vector<float> dimmers;
   double fov = 60.0;
+  bool map = false;
+  int refine = 0;  // 0: one plain frame; N: converge adaptive refinement with N anti-aliasing samples
 };
 
 glm::dvec3 to_vec3(const std::vector<double>& v, const char* what) {
@@ -51,7 +53,16 @@ int run_render(const RenderArgs& args) {
   view.eye = to_vec3(args.eye, "eye");
   view.forward = to_vec3(args.look, "look") - view.eye;
   view.fov_y_degrees = args.fov;
-  renderer.draw(view, width, height);
+  renderer.set_map_overlay(args.map);
+  if (args.refine > 0) {
+    render::RefineSettings settings;
+    settings.aa_samples = args.refine;
+    renderer.set_refine_settings(settings);
+    while (renderer.refine(view, width, height)) {
+    }
+  } else {
+    renderer.draw(view, width, height);
+  }
   render::write_png(args.output, renderer.read_pixels(width, height));
   const auto& stats = renderer.last_stats();
   std::cout << "wrote " << args.output << " (" << width << "x" << height << ", backend " << backend->name()
@@ -72,6 +83,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--backend", args->backend, "auto, osmesa, egl or glfw");
   cmd->add_option("--dimmers", args->dimmers, "Dimmer level per circuit, 0..1")->delimiter(',');
   cmd->add_option("--fov", args->fov, "Vertical field of view, degrees");
+  cmd->add_flag("--map", args->map, "Overlay the floor plan (top right) with the viewer's position");
+  cmd->add_option(
+         "--refine", args->refine,
+         "Refine as a still kiosk does (patches, diagonals, subdivision) with N anti-aliasing samples")
+      ->check(CLI::Range(1, 1024));
   cmd->callback([args, &exit_code] { exit_code = run_render(*args); });
 }
 

@@ -1,0 +1,241 @@
+// walk bench render scene.toml|x.walk: frame times at 1280x720 along a scripted walk, culled and unculled,
+// with the governor holding the target rate while moving, and what each refinement level and each
+// anti-aliasing sample count costs. One CSV table on stdout.
+#include <glad/gl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <glm/geometric.hpp>
+#include <iostream>
+#include <sstream>
+
+#include "compiler/pipeline.hpp"
+#include "model/bundle.hpp"
+#include "model/error.hpp"
+#include "render/backend/backend.hpp"
+#include "render/renderer.hpp"
+#include "tools/commands.hpp"
+
+namespace walk::tools {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string input;
+  std::string size = "1280x720";
+  std::string backend = "auto";
+  int frames = 240;
+  double target_hz = 60.0;
+};
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Nearest rank on the sorted times.
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(p * double(v.size() - 1) + 0.5))];
+}
+
+// The scripted walk: eye 1.2 m under each luminaire (inside a room by construction), visited nearest first,
+// straight segments between them, looking where it goes, turning a little as it walks. Segments between
+// rooms that are not neighbours pass through walls: fine for timing, not a navigation test.
+std::vector<render::View> scripted_walk(const model::Bundle& bundle, int frames) {
+  std::vector<glm::dvec3> stops;
+  for (const auto& l : bundle.luminaires())
+    stops.push_back({l.position[0], l.position[1], l.position[2] - 1.2});
+  if (stops.size() < 2) {
+    const auto& m = bundle.meta();
+    const glm::dvec3 lo{m.bounds_min[0], m.bounds_min[1], m.bounds_min[2]};
+    const glm::dvec3 hi{m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]};
+    stops = {lo + (hi - lo) * glm::dvec3(0.25, 0.5, 0.0) + glm::dvec3(0, 0, 1.6),
+             lo + (hi - lo) * glm::dvec3(0.75, 0.5, 0.0) + glm::dvec3(0, 0, 1.6)};
+  }
+  std::vector<glm::dvec3> path{stops.front()};
+  std::vector<bool> used(stops.size(), false);
+  used[0] = true;
+  for (std::size_t k = 1; k < std::min<std::size_t>(stops.size(), 16); ++k) {
+    std::size_t best = 0;
+    double best_d = 1e300;
+    for (std::size_t i = 0; i < stops.size(); ++i)
+      if (!used[i] && glm::length(stops[i] - path.back()) < best_d)
+        best_d = glm::length(stops[i] - path.back()), best = i;
+    used[best] = true;
+    path.push_back(stops[best]);
+  }
+  std::vector<double> along{0.0};
+  for (std::size_t i = 1; i < path.size(); ++i)
+    along.push_back(along.back() + glm::length(path[i] - path[i - 1]));
+  std::vector<render::View> views;
+  for (int f = 0; f < frames; ++f) {
+    const double s = along.back() * f / std::max(1, frames - 1);
+    std::size_t i = 1;
+    while (i + 1 < path.size() && along[i] < s) ++i;
+    const double t = along[i] > along[i - 1] ? (s - along[i - 1]) / (along[i] - along[i - 1]) : 0.0;
+    render::View v;
+    v.eye = path[i - 1] + (path[i] - path[i - 1]) * std::clamp(t, 0.0, 1.0);
+    glm::dvec3 d = path[i] - path[i - 1];
+    d.z = 0.0;
+    if (glm::length(d) < 1e-9) d = {1, 0, 0};
+    const double turn = 0.6 * std::sin(f * 0.05);
+    d = glm::normalize(d);
+    v.forward = {d.x * std::cos(turn) - d.y * std::sin(turn), d.x * std::sin(turn) + d.y * std::cos(turn),
+                 -0.1};
+    views.push_back(v);
+  }
+  return views;
+}
+
+void row(const std::string& scene, const std::string& section, const std::string& variant, std::size_t frames,
+         double p50, double p99, double polygons, const std::string& note) {
+  std::printf("%s,%s,%s,%zu,%.2f,%.2f,%.0f,%s\n", scene.c_str(), section.c_str(), variant.c_str(), frames,
+              p50, p99, polygons, note.c_str());
+}
+
+int run(const Options& o) {
+  int width = 0, height = 0;
+  char x = 0;
+  std::istringstream size(o.size);
+  if (!(size >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0)
+    throw Error("--size '" + o.size + "' is not WIDTHxHEIGHT");
+  std::string path = o.input;
+  std::filesystem::path temp;
+  if (std::filesystem::path(o.input).extension() == ".toml") {
+    temp = std::filesystem::temp_directory_path() / ("walk_bench_render_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(temp);
+    path = (temp / "scene.walk").string();
+    std::cerr << "compiling " << o.input << "\n";
+    compiler::compile_to_file(o.input, path, true);
+  }
+  const std::string scene = std::filesystem::path(o.input).stem().string();
+  {
+    auto bundle = model::Bundle::open(path);
+    render::BackendOptions bo;
+    bo.kind = render::parse_backend_kind(o.backend);
+    bo.width = width;
+    bo.height = height;
+    auto backend = render::Backend::create(bo);
+    backend->make_current();
+    render::Renderer renderer(*bundle);
+    const auto walk = scripted_walk(*bundle, o.frames);
+    std::cerr << "backend " << backend->name() << ", " << bundle->polygons().size() << " polygons, "
+              << bundle->cells().size() << " cells, " << bundle->circuits().size() << " circuits\n";
+    std::printf("scene,section,variant,frames,p50_ms,p99_ms,mean_polygons,note\n");
+
+    // Culled and unculled along the same walk; each frame drawn and finished.
+    double p50[2] = {};
+    for (int culled = 0; culled < 2; ++culled) {
+      renderer.set_pvs_culling(culled != 0);
+      renderer.draw(walk.front(), width, height);
+      glFinish();
+      std::vector<double> times;
+      double polygons = 0.0;
+      for (const auto& v : walk) {
+        const auto t0 = Clock::now();
+        renderer.draw(v, width, height);
+        glFinish();
+        times.push_back(ms_since(t0));
+        polygons += renderer.last_stats().polygons_drawn;
+      }
+      p50[culled] = percentile(times, 0.5);
+      row(scene, "walk", culled ? "culled" : "unculled", times.size(), p50[culled], percentile(times, 0.99),
+          polygons / double(walk.size()), "patches; draw + glFinish");
+    }
+    std::printf("%s,walk,speedup,%zu,%.2f,,,p50 unculled / p50 culled\n", scene.c_str(), walk.size(),
+                p50[0] / std::max(1e-9, p50[1]));
+
+    // Governed: refine() every frame while moving, culled; the governor picks coarse or patches per cell.
+    renderer.set_pvs_culling(true);
+    renderer.set_target_rate(o.target_hz);
+    std::vector<double> times;
+    double polygons = 0.0;
+    int reduced = 0, coarse = 0;
+    for (int pass = 0; pass < 2; ++pass) {  // the first pass teaches the governor each cell's cost
+      times.clear();
+      polygons = 0.0;
+      reduced = coarse = 0;
+      for (const auto& v : walk) {
+        const auto t0 = Clock::now();
+        renderer.refine(v, width, height);
+        times.push_back(ms_since(t0));
+        polygons += renderer.last_stats().polygons_drawn;
+        reduced += renderer.last_stats().resolution < 1.0f;
+        coarse += renderer.last_stats().resolution == 1.0f && renderer.last_stats().patch_weight == 0.0f;
+      }
+    }
+    const double budget = 1000.0 / o.target_hz;
+    row(scene, "governed", "moving", times.size(), percentile(times, 0.5), percentile(times, 0.99),
+        polygons / double(walk.size()),
+        std::to_string(reduced) + " half-res + " + std::to_string(coarse) + " coarse + " +
+            std::to_string(walk.size() - std::size_t(reduced + coarse)) + " patch frames; target " +
+            std::to_string(int(budget * 100) / 100.0).substr(0, 5) + " ms; p99 " +
+            (percentile(times, 0.99) <= budget ? "within" : "OVER"));
+
+    // Level costs at one still view: each level drawn alone, then AA sample counts to convergence.
+    const render::View still = walk[walk.size() / 2];
+    struct Level {
+      const char* name;
+      float weight, resolution;
+    };
+    for (const Level& level : {Level{"reduced-half-res", 0.0f, 0.5f}, Level{"coarse", 0.0f, 1.0f},
+                               Level{"blend-0.5", 0.5f, 1.0f}, Level{"patches", 1.0f, 1.0f}}) {
+      std::vector<double> t;
+      for (int i = 0; i < 30; ++i) {
+        const auto t0 = Clock::now();
+        renderer.draw(still, width, height, render::DrawOptions{level.weight, 0.0f, 0.0f, level.resolution});
+        glFinish();
+        t.push_back(ms_since(t0));
+      }
+      row(scene, "level", level.name, t.size(), percentile(t, 0.5), percentile(t, 0.99),
+          renderer.last_stats().polygons_drawn, "one frame");
+    }
+    for (int samples : {1, 4, 16, 64}) {
+      renderer.set_refine_settings({.blend_steps = 0, .aa_samples = samples, .samples_per_frame = 1});
+      renderer.set_moving_level(render::MovingLevel::Patches);
+      (void)renderer.refine(still, width, height);  // the moving frame
+      glFinish();
+      auto t0 = Clock::now();
+      (void)renderer.refine(still, width, height);  // diagonals and subdivision under the current mix
+      const double choose = ms_since(t0);
+      if (samples == 1) {
+        const auto& st = renderer.last_stats();
+        row(scene, "level", "diagonals+subdivision", 1, choose, choose, st.polygons_drawn,
+            std::to_string(st.quads_flipped) + " quads flipped; " + std::to_string(st.quads_subdivided) +
+                " subdivided into " + std::to_string(st.subdivision_triangles) +
+                " triangles (CPU + upload + frame)");
+      }
+      t0 = Clock::now();
+      while (renderer.refine(still, width, height)) {
+      }
+      const double total = ms_since(t0);
+      row(scene, "aa", std::to_string(samples) + "-samples", std::size_t(samples), total / samples, total,
+          renderer.last_stats().polygons_drawn, "p50 column: ms per sample; p99 column: ms to converge");
+    }
+  }
+  if (!temp.empty()) std::filesystem::remove_all(temp);
+  return 0;
+}
+
+}  // namespace
+
+void add_bench_render_command(CLI::App& bench, int& exit_code) {
+  auto o = std::make_shared<Options>();
+  auto* cmd =
+      bench.add_subcommand("render", "Frame times culled/unculled, governor, refinement and AA costs (CSV)");
+  cmd->add_option("input", o->input, "Scene config (.toml, compiled first) or bundle (.walk)")->required();
+  cmd->add_option("--size", o->size, "WIDTHxHEIGHT");
+  cmd->add_option("--backend", o->backend, "auto, osmesa, egl or glfw");
+  cmd->add_option("--frames", o->frames, "Frames along the scripted walk")->check(CLI::Range(2, 100000));
+  cmd->add_option("--target-hz", o->target_hz, "Frame rate the governor holds")
+      ->check(CLI::Range(1.0, 1000.0));
+  cmd->callback([o, &exit_code] { exit_code = run(*o); });
+}
+
+}  // namespace walk::tools
