@@ -12,5 +12,6 @@ void add_render_command(CLI::App& app, int& exit_code);
 // `walk bench ...`: accuracy/time sweeps printing CSV; each registers under the `bench` subcommand.
 void add_bench_radiosity_command(CLI::App& bench, int& exit_code);
 void add_bench_rays_command(CLI::App& bench, int& exit_code);
+void add_bench_render_command(CLI::App& bench, int& exit_code);
 
 }  // namespace walk::tools
