@@ -4,8 +4,10 @@
 
 namespace walk::compiler {
 
-// Patches below this area (m^2) carry no meaningful energy and would only add noise: 1 mm^2.
-constexpr double kMinPatchArea = 1e-6;
+// Only degenerate triangles are refused (1e-12 m^2: a 1 um x 1 um sliver, round-off at building scale).
+// Small real ones stay: furniture detail in the measured conference room is mostly under 1 mm^2, and a
+// triangle left out of the patch set would get no light at its vertices and show black.
+constexpr double kMinPatchArea = 1e-12;
 
 bool PatchSet::add(std::uint32_t a, std::uint32_t b, std::uint32_t c, const model::Rgb& reflectance,
                    std::uint32_t polygon) {
