@@ -564,10 +564,9 @@ void Renderer::Impl::choose_diagonals() {
   stats.subdivision_triangles = std::uint32_t(sub.triangles.size() / 3);
   shaded_vertices = GLsizei(sub.triangles.size());
   if (!sub.triangles.empty()) {
-    if (!shaded_program) {
-      shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader);
-      make_shaded_vao(shaded_vao, shaded_vbo);
-    }
+    // The map view may have made the program already; the VAO is this step's own.
+    if (!shaded_program) shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader);
+    if (!shaded_vao) make_shaded_vao(shaded_vao, shaded_vbo);
     glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sub.triangles.size() * sizeof(ShadedVertex)),
                  sub.triangles.data(), GL_DYNAMIC_DRAW);

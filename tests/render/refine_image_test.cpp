@@ -159,8 +159,9 @@ TEST_P(RefineImageTest, BilinearSubdivisionWhereTheTwistIsLarge) {
   scene.light_twist = true;
   auto bundle = open_two_rooms(scene, "twist");
   const View view = looking_along_x(-1.0);  // A's outer wall, centred
-  auto refined = [&](int depth, FrameStats* stats) {
+  auto refined = [&](int depth, FrameStats* stats, bool map = false) {
     Renderer renderer(*bundle);
+    renderer.set_map_overlay(map, 0.2f);  // in a corner, away from the wall's centre
     renderer.set_refine_settings({.blend_steps = 0, .aa_samples = 1, .subdivision_depth = depth});
     const Image image = converge(renderer, view);
     *stats = renderer.last_stats();
@@ -169,6 +170,8 @@ TEST_P(RefineImageTest, BilinearSubdivisionWhereTheTwistIsLarge) {
   FrameStats flat_stats, sub_stats;
   const Image flat = refined(0, &flat_stats);
   const Image sub = refined(4, &sub_stats);
+  FrameStats map_stats;
+  const Image with_map = refined(4, &map_stats, true);  // the map view shares the subdivision's shader
   EXPECT_EQ(flat_stats.quads_subdivided, 0u);
   EXPECT_GT(sub_stats.quads_subdivided, 0u);
   EXPECT_GT(sub_stats.subdivision_triangles, 2 * sub_stats.quads_subdivided);
@@ -178,6 +181,7 @@ TEST_P(RefineImageTest, BilinearSubdivisionWhereTheTwistIsLarge) {
     EXPECT_NEAR(int(centre(flat)[k]), expected_byte(diagonal[k], scene.exposure), 3)
         << "no subdivision, " << k;
     EXPECT_NEAR(int(centre(sub)[k]), expected_byte(bilinear[k], scene.exposure), 3) << "subdivided, " << k;
+    EXPECT_EQ(centre(with_map)[k], centre(sub)[k]) << "subdivided with the map view on, " << k;
   }
 }
 
