@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "model/bundle.hpp"
+#include "two_rooms.hpp"
 
 namespace walk::render {
 namespace {
@@ -78,6 +79,40 @@ TEST(WalkTool, RendersACompiledHouse) {
       0);
   EXPECT_NE(output.find("auto, osmesa, egl, glfw"), std::string::npos) << output;
   fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace walk::render
+
+namespace walk::render {
+namespace {
+
+// `walk bench render` end to end on the four-cell test bundle, small and short: every section prints its
+// rows (a smoke test: the figures themselves come from the full run in docs/RENDER.md).
+TEST(WalkTool, BenchRenderPrintsEverySection) {
+  test::TwoRooms scene;
+  scene.four_cells = true;
+  const auto bundle = test::open_two_rooms(scene, "bench_render");
+  std::string output;
+  ASSERT_EQ(
+      run(kWalk + " bench render " + bundle->path() + " --backend osmesa --size 160x120 --frames 12", output),
+      0)
+      << output;
+  for (const char* row : {"bench_render,walk,unculled,12,", "walk,culled,12,", "walk,speedup,",
+                          "governed,moving,12,", "level,reduced-half-res,", "level,patches,",
+                          "level,diagonals+subdivision,", "aa,1-samples,", "aa,64-samples,"})
+    EXPECT_NE(output.find(row), std::string::npos) << "missing '" << row << "' in:\n" << output;
+  // The culled walk draws fewer polygons than the unculled one (each room leaves out 3 of the other's).
+  auto polygons = [&](const std::string& key) {
+    const auto at = output.find(key);
+    if (at == std::string::npos) return -1.0;
+    std::stringstream line(output.substr(at, output.find('\n', at) - at));
+    std::string field;
+    for (int i = 0; i < 5; ++i) std::getline(line, field, ',');  // section, variant, frames, p50, p99
+    std::getline(line, field, ',');
+    return std::stod(field);
+  };
+  EXPECT_LT(polygons("walk,culled,"), polygons("walk,unculled,"));
 }
 
 }  // namespace
