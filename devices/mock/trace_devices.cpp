@@ -77,4 +77,15 @@ std::optional<DimmerReading> TraceDimmerPanel::poll(double now) {
   return r;
 }
 
+TraceButtons::TraceButtons(const std::string& path) : trace_(CsvTrace::load(path, {"button"})) {
+  check_range(trace_, 0, 0.0, static_cast<double>(kButtonCount - 1), "button");
+}
+
+std::vector<ButtonPress> TraceButtons::poll(double now) {
+  std::vector<ButtonPress> out;
+  for (; next_ < trace_.size() && trace_.time(next_) <= now; ++next_)
+    out.push_back({trace_.time(next_), static_cast<Button>(static_cast<int>(trace_.value(next_, 0)))});
+  return out;
+}
+
 }  // namespace walk::devices
