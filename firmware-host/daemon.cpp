@@ -43,8 +43,8 @@ Daemon::Daemon(const KioskConfig& config, const model::Bundle& bundle, FrameRend
   double z = kHugeZ;
   if (config.start.floor_z) z = *config.start.floor_z - origin_.z;
   if (config.start.eye_z) z = *config.start.eye_z - config.walker.eye_height - origin_.z;
-  const glm::dvec3 start{config.start.x - origin_.x, config.start.y - origin_.y, z};
-  if (!navigator_.place(start))
+  start_ = {config.start.x - origin_.x, config.start.y - origin_.y, z};
+  if (!navigator_.place(start_))
     throw Error(
         located(config.path, 0,
                 fmt::format("start: no floor at world ({:g}, {:g}) within step height below the given z, "
@@ -55,21 +55,27 @@ Daemon::Daemon(const KioskConfig& config, const model::Bundle& bundle, FrameRend
 
   levels_.resize(bundle.circuits().size());
   for (std::size_t i = 0; i < levels_.size(); ++i) levels_[i] = bundle.circuits()[i].default_level;
+  channel_circuit_ = map_channels(config_, devices_);
+}
+
+std::vector<std::uint32_t> Daemon::map_channels(const KioskConfig& config, const DeviceSet& devices) const {
+  std::vector<std::uint32_t> out;
   for (std::size_t ch = 0; ch < config.dimmer_circuits.size(); ++ch) {
     const auto& name = config.dimmer_circuits[ch];
     std::uint32_t found = 0xffffffffu;
-    for (std::uint32_t c = 0; c < bundle.circuits().size(); ++c)
-      if (bundle.string(bundle.circuits()[c].name) == name) found = c;
+    for (std::uint32_t c = 0; c < bundle_.circuits().size(); ++c)
+      if (bundle_.string(bundle_.circuits()[c].name) == name) found = c;
     if (found == 0xffffffffu)
       throw Error(located(config.path, 0,
                           fmt::format("dimmers.channels[{}]: the bundle has no circuit named '{}'", ch, name),
                           "walk inspect lists the circuits"));
-    channel_circuit_.push_back(found);
+    out.push_back(found);
   }
-  if (devices_.dimmer_panel && devices_.dimmer_panel->channel_count() < channel_circuit_.size())
+  if (devices.dimmer_panel && devices.dimmer_panel->channel_count() < out.size())
     throw Error(located(config.path, 0,
                         fmt::format("dimmers.channels maps {} channels but the dimmer panel has {}",
-                                    channel_circuit_.size(), devices_.dimmer_panel->channel_count())));
+                                    out.size(), devices.dimmer_panel->channel_count())));
+  return out;
 }
 
 std::string Daemon::room_name() const {
@@ -101,22 +107,103 @@ void Daemon::track_visits() {
   if (std::find(rooms.begin(), rooms.end(), to) == rooms.end()) rooms.push_back(to);
 }
 
-void Daemon::frame(double now, double dt) {
-  double speed = 0.0, steering = 0.0, yaw = 0.0;
-  if (devices_.treadmill)
+void Daemon::poll_devices(double now) {
+  // Hardware readings carry CLOCK_MONOTONIC stamps: remember new ones to measure reading -> frame latency.
+  auto stamp = [&](const devices::Device& d, int slot, double t) {
+    if (!d.monotonic_timestamps() || t <= last_stamp_[slot]) return;
+    last_stamp_[slot] = t;
+    pending_stamps_.emplace_back(slot, t);
+  };
+  if (devices_.treadmill) {
     if (auto r = devices_.treadmill->poll(now)) {
-      speed = r->speed;
-      steering = r->steering;
+      speed_ = r->speed;
+      steering_ = r->steering;
+      stamp(*devices_.treadmill, 0, r->time);
+    } else {
+      speed_ = 0.0;  // stale or down: stand still rather than keep walking on an old speed
     }
+  }
   if (devices_.head_tracker)
-    if (auto r = devices_.head_tracker->poll(now)) {
-      yaw = r->yaw;
+    if (auto r = devices_.head_tracker->poll(now)) {  // stale: keep looking where the head last was
+      yaw_ = r->yaw;
       pitch_ = r->pitch;
+      stamp(*devices_.head_tracker, 1, r->time);
     }
   if (devices_.dimmer_panel)
-    if (auto r = devices_.dimmer_panel->poll(now))
+    if (auto r = devices_.dimmer_panel->poll(now)) {  // the panel keeps its last good levels itself
       for (std::size_t ch = 0; ch < channel_circuit_.size() && ch < r->levels.size(); ++ch)
         levels_[channel_circuit_[ch]] = static_cast<float>(std::clamp(r->levels[ch], 0.0, 1.0));
+      stamp(*devices_.dimmer_panel, 2, r->time);
+    }
+  if (devices_.buttons)
+    for (const auto& press : devices_.buttons->poll(now)) {
+      spdlog::info("button {} pressed", devices::button_name(press.button));
+      if (press.button == devices::Button::ReturnToStart) return_to_start();
+      if (press.button == devices::Button::NextBuilding) next_building_ = true;
+    }
+}
+
+void Daemon::return_to_start() {
+  navigator_.return_to_start();
+  heading_ = config_.start.heading;
+  ++summary_.returns_to_start;
+}
+
+const devices::Device* Daemon::device(std::size_t role) const {
+  switch (role) {
+    case 0:
+      return devices_.treadmill.get();
+    case 1:
+      return devices_.head_tracker.get();
+    case 2:
+      return devices_.dimmer_panel.get();
+    default:
+      return devices_.buttons.get();
+  }
+}
+
+std::string Daemon::device_status() const {
+  std::string out;
+  for (std::size_t i = 0; i < kRoles; ++i)
+    if (const auto* d = device(i))
+      out += fmt::format("{}{} {}", out.empty() ? "" : ", ", kRoleNames[i], devices::state_name(d->state()));
+  return out.empty() ? "no devices" : out;
+}
+
+void Daemon::apply(const KioskConfig& config, DeviceSet devices) {
+  if (config.bundle != config_.bundle)
+    spdlog::warn(
+        "{}: bundle changed to {}: a new building needs a restart (systemctl restart walkd); "
+        "the rest of the config is applied",
+        config.path, config.bundle);
+  auto channels = map_channels(config, devices);  // throws before anything changes
+  const KioskConfig old = config_;
+  config_ = config;
+  config_.bundle = old.bundle;  // the walk goes on in the building it is in, from the start it had
+  config_.start = old.start;
+  config_.buildings = old.buildings;
+  devices_ = std::move(devices);
+  channel_circuit_ = std::move(channels);
+  NavSettings nav = nav_settings(config_.walker);
+  navigator_.set_settings(nav);
+  for (double& t : last_stamp_) t = -1.0;
+  ++summary_.reloads;
+  spdlog::info("{}: config reloaded; devices: {}", config_.path, device_status());
+}
+
+void Daemon::reload() {
+  if (!reload_flag_ || !reload_flag_->exchange(false) || !reload_) return;
+  try {
+    KioskConfig next = reload_();
+    apply(next, open_devices(next.devices));
+  } catch (const std::exception& e) {
+    spdlog::error("reload failed, keeping the running config: {}", e.what());
+  }
+}
+
+void Daemon::frame(double now, double dt) {
+  poll_devices(now);
+  const double speed = speed_, steering = steering_, yaw = yaw_;
 
   // The walker goes where the body (start heading + treadmill steering) and the head point together.
   heading_ = config_.start.heading + steering + yaw;
@@ -132,7 +219,13 @@ void Daemon::frame(double now, double dt) {
   const double t0 = wall_seconds();
   renderer_.draw(view);
   renderer_.present();
+  const double shown = devices::monotonic_seconds();
   summary_.render_seconds += wall_seconds() - t0;
+  for (const auto& [role, t] : pending_stamps_) latencies_[role].push_back(shown - t);
+  pending_stamps_.clear();
+  for (std::size_t i = 0; i < kRoles; ++i)
+    if (const devices::Device* d = device(i); d && d->state() != devices::DeviceState::Live)
+      ++faulty_frames_[i];
   ++summary_.frames;
 
   if (config_.output.png_every > 0.0 && now + 1e-9 >= next_png_) {
@@ -170,7 +263,12 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
       summary_.stopped_by = "window";
       break;
     }
+    if (next_building_) {
+      summary_.stopped_by = "next_building";
+      break;
+    }
     if (sim && n >= total_frames) break;
+    reload();
     if (sim) sim_clock.set(static_cast<double>(n) * step);  // frame * step: no accumulated rounding
     const double now = clock.now();
     const double dt = sim ? step : std::min(now - last, kMaxRealtimeStep);
@@ -181,13 +279,13 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
     const glm::dvec3 w = to_world(navigator_.feet());
     const double wall = wall_seconds() - wall_start;
     notifier_.frame(wall,
-                    fmt::format("{:.1f} fps, cell {}, room {}, at ({:.2f}, {:.2f}, {:.2f})",
+                    fmt::format("{:.1f} fps, cell {}, room {}, at ({:.2f}, {:.2f}, {:.2f}); {}",
                                 summary_.render_seconds > 0 ? summary_.frames / summary_.render_seconds : 0.0,
-                                cell_, room_name(), w.x, w.y, w.z));
+                                cell_, room_name(), w.x, w.y, w.z, device_status()));
     summary_.simulated_seconds = sim ? static_cast<double>(n + 1) * step : now;
     if (!sim) {
       // Real time: hold simulation.frame_rate instead of spinning (a window without vsync would burn a core).
-      const double left = now + step - clock.now();
+      const double left = now + 1.0 / config_.simulation.frame_rate - clock.now();  // reloadable
       if (left > 0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
     }
   }
@@ -201,6 +299,25 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
   summary_.final_heading_deg = heading_ * 180.0 / std::numbers::pi;
   summary_.final_room = room_name();
   summary_.final_cell = cell_;
+  summary_.device_states.clear();
+  summary_.device_faulty_frames.clear();
+  for (std::size_t i = 0; i < kRoles; ++i)
+    if (const auto* d = device(i)) {
+      summary_.device_states.emplace_back(kRoleNames[i], devices::state_name(d->state()));
+      summary_.device_faulty_frames.emplace_back(kRoleNames[i], faulty_frames_[i]);
+    }
+  std::vector<double> sorted;
+  for (const auto& l : latencies_) sorted.insert(sorted.end(), l.begin(), l.end());
+  if (!sorted.empty()) {
+    std::sort(sorted.begin(), sorted.end());
+    auto at = [&](double q) {
+      return sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
+    };
+    summary_.latency_p50 = at(0.5);
+    summary_.latency_p99 = at(0.99);
+    summary_.latency_max = sorted.back();
+    summary_.latency_samples = sorted.size();
+  }
   write_summary(config_.output.folder, summary_);
   spdlog::info(
       "stopped ({}): {} frames, {:.1f} s simulated, {:.1f} s wall, {:.1f} fps, {:.1f} m walked, rooms: {}",

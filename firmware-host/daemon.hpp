@@ -3,6 +3,7 @@
 // frame every N seconds -> notify systemd, until the simulated end time, a stop request or a closed window.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -25,8 +26,27 @@ class Daemon {
   // naming the config key when the start has no floor or a channel names an unknown circuit.
   Daemon(const KioskConfig& config, const model::Bundle& bundle, FrameRenderer& renderer, DeviceSet devices);
 
-  // Runs the loop and writes summary.json into the output folder, also when stopped early.
+  // Runs the loop and writes summary.json into the output folder, also when stopped early. Returns with
+  // stopped_by = "next_building" when that button is pressed (walkd then opens the next building).
   Summary run(const std::atomic<bool>& stop);
+
+  // SIGHUP: when `flag` is set between frames, `load` re-reads the config and the daemon applies it
+  // without moving the walker; a config that fails to load or apply is logged and the old one kept.
+  void set_reloader(std::atomic<bool>& flag, std::function<KioskConfig()> load) {
+    reload_flag_ = &flag;
+    reload_ = std::move(load);
+  }
+  // Applies a new config to the running walk: devices reopened, dimmer map, walker, display, output and
+  // frame-rate settings. The bundle and start stay (they define the walk). Throws walk::Error if invalid.
+  void apply(const KioskConfig& config, DeviceSet devices);
+
+  [[nodiscard]] const KioskConfig& config() const { return config_; }
+  [[nodiscard]] const DeviceSet& devices() const { return devices_; }
+  // Seconds from a hardware reading's timestamp to the present() of the frame that used it, per role
+  // (0 treadmill, 1 head tracker, 2 dimmer panel).
+  [[nodiscard]] const std::vector<double>& latencies(std::size_t role) const { return latencies_[role]; }
+  // "treadmill live, head_tracker stale, ..." as the STATUS line shows it.
+  [[nodiscard]] std::string device_status() const;
 
   [[nodiscard]] bool simulated() const { return config_.simulation.seconds > 0.0; }
   [[nodiscard]] const Navigator& navigator() const { return navigator_; }
@@ -34,21 +54,38 @@ class Daemon {
   [[nodiscard]] glm::dvec3 to_world(const glm::dvec3& local) const { return local + origin_; }
 
  private:
+  static constexpr std::size_t kRoles = 4;  // treadmill, head_tracker, dimmer_panel, buttons
+  static constexpr const char* kRoleNames[kRoles] = {"treadmill", "head_tracker", "dimmer_panel", "buttons"};
+  [[nodiscard]] const devices::Device* device(std::size_t role) const;
   void frame(double now, double dt);
+  void poll_devices(double now);
+  void return_to_start();
+  void reload();
+  [[nodiscard]] std::vector<std::uint32_t> map_channels(const KioskConfig& config,
+                                                        const DeviceSet& devices) const;
   void track_visits();
   [[nodiscard]] std::string room_name() const;
 
-  const KioskConfig config_;  // a copy: the caller's config may go out of scope
+  KioskConfig config_;  // a copy: the caller's config may go out of scope
   const model::Bundle& bundle_;
   FrameRenderer& renderer_;
   DeviceSet devices_;
   glm::dvec3 origin_;
+  glm::dvec3 start_{0.0};  // local
   Navigator navigator_;
   SystemdNotifier notifier_;
 
-  std::vector<float> levels_;                   // per circuit
-  std::vector<std::uint32_t> channel_circuit_;  // per dimmer channel
-  double heading_ = 0.0, pitch_ = 0.0;          // of the gaze, radians
+  std::vector<float> levels_;                        // per circuit
+  std::vector<std::uint32_t> channel_circuit_;       // per dimmer channel
+  double heading_ = 0.0, pitch_ = 0.0;               // of the gaze, radians
+  double speed_ = 0.0, steering_ = 0.0, yaw_ = 0.0;  // last good device values (stale treadmill: speed 0)
+  bool next_building_ = false;
+  std::atomic<bool>* reload_flag_ = nullptr;
+  std::function<KioskConfig()> reload_;
+  std::vector<std::pair<int, double>> pending_stamps_;  // (role, hardware reading time) polled this frame
+  std::vector<double> latencies_[3];
+  std::uint64_t faulty_frames_[kRoles] = {};
+  double last_stamp_[3] = {-1.0, -1.0, -1.0};  // per treadmill, head tracker, panel: newest reading seen
   double next_png_ = 0.0;
   std::uint32_t cell_ = 0;
   std::optional<std::uint32_t> group_;

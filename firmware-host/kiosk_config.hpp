@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "devices/gpio/gpio_device.hpp"
+#include "devices/hid/hid_device.hpp"
+#include "devices/modbus/modbus_panel.hpp"
+
 namespace walk::kiosk {
 
 struct DisplayConfig {
@@ -30,12 +34,25 @@ struct WalkerConfig {
 };
 
 struct DeviceConfig {
-  std::string backend;  // "mock": replay `trace`
-  std::string trace;    // resolved path
+  DeviceConfig(std::string backend_ = {}, std::string trace_ = {})
+      : backend(std::move(backend_)), trace(std::move(trace_)) {}
+  std::string backend;  // mock (replay `trace`) | hid | gpio | modbus
+  std::string trace;    // mock: resolved path
+  devices::HidDeviceConfig hid;
+  devices::GpioEncoderConfig encoder;
+  devices::GpioButtonsConfig buttons;
+  devices::ModbusPanelConfig modbus;
+  int line = 0;  // config file line of the device's table, for errors about the device
 };
 
 struct DevicesConfig {
-  std::optional<DeviceConfig> treadmill, head_tracker, dimmer_panel;
+  std::optional<DeviceConfig> treadmill, head_tracker, dimmer_panel, buttons;
+};
+
+// Another building the next_building button switches to, with its own start.
+struct BuildingConfig {
+  std::string bundle;
+  StartConfig start;
 };
 
 struct SimulationConfig {
@@ -49,8 +66,9 @@ struct OutputConfig {
 };
 
 struct KioskConfig {
-  std::string path;    // the config file itself
-  std::string bundle;  // resolved path of the .walk bundle
+  std::string path;                       // the config file itself
+  std::string bundle;                     // resolved path of the .walk bundle
+  std::vector<BuildingConfig> buildings;  // [[buildings]]: visited in order by next_building, then back
   DisplayConfig display;
   StartConfig start;
   WalkerConfig walker;

@@ -55,6 +55,7 @@ class Navigator {
   [[nodiscard]] std::uint32_t floor_polygon() const { return floor_polygon_; }
   [[nodiscard]] double distance_walked() const { return distance_; }
   [[nodiscard]] const NavSettings& settings() const { return settings_; }
+  void set_settings(const NavSettings& settings) { settings_ = settings; }  // config reload; the grid stays
 
   // The highest upward-facing solid surface under (x, y) no higher than max_z.
   [[nodiscard]] std::optional<FloorHit> floor_at(const glm::dvec2& p, double max_z) const;

@@ -67,7 +67,21 @@ std::string summary_json(const Summary& s) {
     << "  \"final_eye\": " << vec(s.final_eye) << ",\n"
     << "  \"final_heading_deg\": " << num(s.final_heading_deg) << ",\n"
     << "  \"final_room\": " << quoted(s.final_room) << ",\n"
-    << "  \"final_cell\": " << s.final_cell << "\n"
+    << "  \"final_cell\": " << s.final_cell << ",\n"
+    << "  \"reloads\": " << s.reloads << ",\n"
+    << "  \"returns_to_start\": " << s.returns_to_start << ",\n"
+    << "  \"devices\": {";
+  for (std::size_t i = 0; i < s.device_states.size(); ++i)
+    o << (i ? ", " : "") << quoted(s.device_states[i].first) << ": " << quoted(s.device_states[i].second);
+  o << "},\n  \"device_faulty_frames\": {";
+  for (std::size_t i = 0; i < s.device_faulty_frames.size(); ++i)
+    o << (i ? ", " : "") << quoted(s.device_faulty_frames[i].first) << ": "
+      << s.device_faulty_frames[i].second;
+  o << "},\n"
+    << "  \"latency_samples\": " << s.latency_samples << ",\n"
+    << "  \"latency_p50_ms\": " << num(s.latency_p50 * 1e3) << ",\n"
+    << "  \"latency_p99_ms\": " << num(s.latency_p99 * 1e3) << ",\n"
+    << "  \"latency_max_ms\": " << num(s.latency_max * 1e3) << "\n"
     << "}\n";
   return o.str();
 }

@@ -10,7 +10,7 @@ namespace walk::kiosk {
 
 struct Summary {
   std::string mode;        // "simulated" or "realtime"
-  std::string stopped_by;  // "end", "signal" or "window"
+  std::string stopped_by;  // "end", "signal", "window" or "next_building"
   std::string renderer;
   std::uint64_t frames = 0;
   double simulated_seconds = 0.0;            // time on the daemon's clock
@@ -27,6 +27,14 @@ struct Summary {
   double final_heading_deg = 0.0;
   std::string final_room;
   std::uint32_t final_cell = 0;
+  std::uint64_t reloads = 0;  // SIGHUP config reloads applied
+  std::uint64_t returns_to_start = 0;
+  // Per device: "treadmill": "live", ... at the end, and how many frames each spent not live.
+  std::vector<std::pair<std::string, std::string>> device_states;
+  std::vector<std::pair<std::string, std::uint64_t>> device_faulty_frames;
+  // Real-time runs with hardware devices: reading timestamp -> frame presented, seconds.
+  double latency_p50 = 0.0, latency_p99 = 0.0, latency_max = 0.0;
+  std::uint64_t latency_samples = 0;
 };
 
 [[nodiscard]] std::string summary_json(const Summary& summary);

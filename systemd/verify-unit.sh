@@ -3,7 +3,8 @@
 # warnings (unknown keys, bad values) yet exits 0, so ANY output counts as failure here.
 # The unit is verified inside a temporary root holding the real system units (for sysinit.target and
 # friends), this unit at /etc/systemd/system and walkd at /usr/local/bin, so ExecStart is checked as installed.
-# Usage: verify-unit.sh [path/to/built/walkd]     (without it, a stand-in executable is used)
+# Usage: verify-unit.sh [path/to/built/walkd|""] [drop-in.conf]
+#   without walkd, a stand-in executable is used; a drop-in (walkd --print-unit-dropin) is verified with it.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(mktemp -d)
@@ -13,12 +14,18 @@ mkdir -p "$root/usr/local/bin" "$root/etc/systemd/system" "$root/usr/lib/systemd
 cp -r /usr/lib/systemd/system "$root/usr/lib/systemd/"
 cp "$here/walkd.service" "$root/etc/systemd/system/walkd.service"
 cp "$here/walkd.sysusers" "$root/usr/lib/sysusers.d/walkd.conf"
+if [ -n "${2:-}" ]; then
+  mkdir -p "$root/etc/systemd/system/walkd.service.d"
+  cp "$2" "$root/etc/systemd/system/walkd.service.d/devices.conf"
+fi
 if [ -n "${1:-}" ]; then
   cp "$1" "$root/usr/local/bin/walkd"
 else
   printf '#!/bin/sh\nexit 0\n' > "$root/usr/local/bin/walkd"
 fi
 chmod 755 "$root/usr/local/bin/walkd"
+mkdir -p "$root/usr/bin"
+cp /usr/bin/kill "$root/usr/bin/kill"  # for ExecReload (procps, in every Debian install)
 
 status=0
 check() {  # check NAME COMMAND...: fails on a non-zero exit or on any output

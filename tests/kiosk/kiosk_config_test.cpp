@@ -102,7 +102,7 @@ TEST_F(KioskConfigTest, ErrorsNameFileLineAndKey) {
   msg = error_of(std::string(kMinimal) + "[devices.treadmill]\nbackend = \"mock\"\n");
   EXPECT_NE(msg.find("devices.treadmill"), std::string::npos) << msg;
   EXPECT_NE(msg.find("trace"), std::string::npos) << msg;
-  msg = error_of(std::string(kMinimal) + "[devices.treadmill]\nbackend = \"hid\"\ntrace = \"x\"\n");
+  msg = error_of(std::string(kMinimal) + "[devices.treadmill]\nbackend = \"usb\"\ntrace = \"x\"\n");
   EXPECT_NE(msg.find("devices.treadmill.backend"), std::string::npos) << msg;
   msg = error_of("bundle = \"b.walk\"\n");
   EXPECT_NE(msg.find("[start]"), std::string::npos) << msg;
