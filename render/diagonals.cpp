@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 
 namespace walk::render {
 namespace {
@@ -15,6 +16,20 @@ bool rotate_to(std::array<std::uint32_t, 3>& t, std::uint32_t first) {
   return false;
 }
 
+// Both diagonals split the quad into two triangles facing the same way as the first: strictly convex.
+bool convex(std::span<const model::VertexRecord> vertices, std::array<std::uint32_t, 4> v) {
+  for (std::uint32_t k : v)
+    if (k >= vertices.size()) return false;
+  auto at = [&](int k) {
+    const float* p = vertices[v[std::size_t(k)]].position;
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
+  const glm::dvec3 a = at(0), b = at(1), c = at(2), d = at(3);
+  const glm::dvec3 n = glm::cross(b - a, d - a);
+  return glm::dot(glm::cross(b - a, c - a), n) > 0.0 && glm::dot(glm::cross(c - a, d - a), n) > 0.0 &&
+         glm::dot(glm::cross(c - b, d - b), n) > 0.0;
+}
+
 float difference(const glm::vec3& a, const glm::vec3& b) {
   return std::abs(a.x - b.x) + std::abs(a.y - b.y) + std::abs(a.z - b.z);
 }
@@ -22,7 +37,8 @@ float difference(const glm::vec3& a, const glm::vec3& b) {
 }  // namespace
 
 std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
-                             std::span<const std::uint32_t> indices) {
+                             std::span<const std::uint32_t> indices,
+                             std::span<const model::VertexRecord> vertices) {
   std::vector<Quad> quads;
   for (std::uint32_t id = 0; id < polygons.size(); ++id) {
     const auto& p = polygons[id];
@@ -47,6 +63,10 @@ std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
       // t2 must run p -> u2 -> q, the shared edge reversed: then u1, p, u2, q is the quad, counter-clockwise.
       if (!rotate_to(t2, pp) || t2[2] != q) {
         i += 3;
+        continue;
+      }
+      if (!vertices.empty() && !convex(vertices, {u1, pp, t2[1], q})) {
+        i += 6;  // a real pair, but flipping it would fold: leave both triangles as they are
         continue;
       }
       quads.push_back({std::uint32_t(i), id, {u1, pp, t2[1], q}});

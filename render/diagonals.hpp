@@ -21,8 +21,11 @@ struct Quad {
   std::array<std::uint32_t, 4> v{};
 };
 
+// With `vertices`, pairs whose union is not strictly convex are skipped: flipping their diagonal would fold a
+// triangle over the other.
 [[nodiscard]] std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
-                                           std::span<const std::uint32_t> indices);
+                                           std::span<const std::uint32_t> indices,
+                                           std::span<const model::VertexRecord> vertices = {});
 
 // Rewrites each quad's six entries of `indices` (same layout as INDX, so draw lists stay valid) for the
 // diagonal with the smaller colour difference between its ends; ties keep the bundle's. Returns how many

@@ -532,7 +532,7 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
 
 // The mix is computed here exactly as the vertex shader does, once per diagonal choice (not per frame).
 void Renderer::Impl::choose_diagonals() {
-  if (quads.empty()) quads = find_quads(bundle.polygons(), bundle.indices());
+  if (quads.empty()) quads = find_quads(bundle.polygons(), bundle.indices(), bundle.vertices());
   const auto vertices = bundle.vertices();
   const auto light = bundle.light();
   const std::size_t circuits = levels.size();

@@ -202,6 +202,25 @@ TEST(Subdivision, DepthFollowsTheTwistAndCornersStayBilinear) {
   EXPECT_EQ(subdivide(quads, vertices, colour, 0.6f, 1).triangles.size(), 8u * 3u) << "depth limit";
 }
 
+TEST(Diagonals, NonConvexPairsAreNotQuads) {
+  OneQuad q;
+  std::vector<model::VertexRecord> vertices(4);
+  // A dart: corner 3 pulled inside triangle 0-1-2. The bundle's 1-3 split is valid (both triangles
+  // counter-clockwise); the 0-2 split would fold triangle 0-2-3 over 0-1-2.
+  const float dart[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0.7f, 0.3f}};
+  for (int k = 0; k < 4; ++k) {
+    vertices[k].position[0] = dart[k][0];
+    vertices[k].position[1] = dart[k][1];
+  }
+  EXPECT_TRUE(find_quads(q.polygons, q.indices, vertices).empty());
+  const float square[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int k = 0; k < 4; ++k) {
+    vertices[k].position[0] = square[k][0];
+    vertices[k].position[1] = square[k][1];
+  }
+  EXPECT_EQ(find_quads(q.polygons, q.indices, vertices).size(), 1u);
+}
+
 TEST(Diagonals, TrianglesThatAreNotPairsAreLeftAlone) {
   std::vector<model::PolygonRecord> polygons{{0, 6, 0, 6, 0, 0, 0, 0}};
   std::vector<std::uint32_t> indices{0, 1, 2, 3, 4, 5};
