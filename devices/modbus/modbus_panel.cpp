@@ -92,7 +92,9 @@ bool ModbusDimmerPanel::step() {
                                    : modbus_read_registers(ctx_, addr, n, dest);
   };
   std::string why;
+  int attempts = 0;
   for (int attempt = 0; attempt <= config_.retries; ++attempt) {
+    ++attempts;
     const double t0 = monotonic_seconds();
     bool ok = true;
     if (one_request) {
@@ -105,6 +107,7 @@ bool ModbusDimmerPanel::step() {
     if (!ok) {
       why = modbus_strerror(errno);
       if (errno == EBADF || errno == ECONNRESET || errno == EPIPE) break;  // the link is gone: reconnect
+      modbus_flush(ctx_);  // drop a late answer to the failed request so it is not taken for the retry's
       continue;
     }
     DimmerReading r;
@@ -129,7 +132,7 @@ bool ModbusDimmerPanel::step() {
     return true;
   }
   disconnect();
-  faults_.down(clock_(), fmt::format("read failed {} times: {}", config_.retries + 1, why));
+  faults_.down(clock_(), fmt::format("read failed {} of {} tries: {}", attempts, config_.retries + 1, why));
   return false;
 }
 

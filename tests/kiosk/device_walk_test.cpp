@@ -40,7 +40,7 @@ DeviceConfig modbus_device(int port, std::vector<int> registers) {
   d.modbus.port = port;
   d.modbus.registers = std::move(registers);
   d.modbus.poll_hz = 100.0;
-  d.modbus.timeout = 0.2;
+  d.modbus.timeout = 2.0;  // generous: only the kill may fault the panel, not a loaded machine
   d.modbus.retries = 1;
   d.modbus.faults.retry_min = 0.05;
   d.modbus.faults.retry_max = 0.2;
