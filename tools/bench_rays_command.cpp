@@ -36,7 +36,7 @@ std::vector<std::string> split(const std::string& s) {
 }
 
 struct Options {
-  std::string models = "house,office,tower,conference,sibenik";
+  std::string models = "house,office,tower,e1m1,dm1,conference,sibenik";
   std::string casters = "axial,embree";
   std::string threads = "1,2";
   std::size_t rays = 1000000;
@@ -164,7 +164,7 @@ void add_bench_rays_command(CLI::App& bench, int& exit_code) {
   auto* rays =
       bench.add_subcommand("rays", "Ray casting: ours vs Embree on primary, radiosity and occlusion rays");
   rays->add_option("--models", opt->models,
-                   "Comma-separated: house, office, tower, conference, sibenik, cornell")
+                   "Comma-separated: house, office, tower, e1m1, dm1, conference, sibenik, cornell")
       ->capture_default_str();
   rays->add_option("--casters", opt->casters, "Comma-separated: axial, bvh, brute, embree")
       ->capture_default_str();
