@@ -25,7 +25,9 @@ else
 fi
 chmod 755 "$root/usr/local/bin/walkd"
 mkdir -p "$root/usr/bin"
-cp /usr/bin/kill "$root/usr/bin/kill"  # for ExecReload (procps, in every Debian install)
+# ExecReload uses procps' /usr/bin/kill; slim images may lack it, and only its path matters here.
+if [ -x /usr/bin/kill ]; then cp /usr/bin/kill "$root/usr/bin/kill"; else printf '#!/bin/sh\n' > "$root/usr/bin/kill"; fi
+chmod 755 "$root/usr/bin/kill"
 
 status=0
 check() {  # check NAME COMMAND...: fails on a non-zero exit or on any output
