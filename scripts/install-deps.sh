@@ -9,7 +9,7 @@ packages=(
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgbm-dev libdrm-dev
   python3-glad libgl1-mesa-dri xvfb xauth
   # devices: HID, GPIO (libgpiod v1), Modbus, systemd notify/journal
-  libhidapi-dev libgpiod-dev libmodbus-dev libsystemd-dev socat systemd
+  libhidapi-dev libgpiod-dev libmodbus-dev libsystemd-dev socat systemd procps
   # config, CLI, logging, geometry, images
   libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev libpolyclipping-dev libpng-dev
   # tests and benchmarks
