@@ -27,8 +27,11 @@ TEST(WalkdNotify, SendsReadyWatchdogStatusAndStopping) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const auto bundle = walk::kiosk::testing::write_two_room_bundle((dir / "rooms.walk").string());
-  std::ofstream(dir / "kiosk.toml") << "bundle = \"rooms.walk\"\n[display]\nwidth = 64\nheight = 36\n"
-                                    << "[start]\nx = 102\ny = 202\nfloor_z = 10\n";
+  std::ofstream(dir / "kiosk.toml")
+      << "bundle = \"rooms.walk\"\n[display]\nwidth = 64\nheight = 36\n"
+      << "[start]\nx = 102\ny = 202\nfloor_z = 10\n"
+      // A panel nobody answers for: walkd runs on and reports it down.
+      << "[devices.dimmer_panel]\nbackend = \"modbus\"\nport = 1\nregisters = [0]\n";
 
   const std::string socket_path = (dir / "notify.sock").string();
   const int sock = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
@@ -97,6 +100,7 @@ TEST(WalkdNotify, SendsReadyWatchdogStatusAndStopping) {
                                       [](const auto& m) { return m.rfind("STATUS=", 0) == 0; });
   EXPECT_NE(status_it->find("fps"), std::string::npos) << *status_it;
   EXPECT_NE(status_it->find("room A"), std::string::npos) << *status_it;
+  EXPECT_NE(status_it->find("dimmer_panel down"), std::string::npos) << *status_it;
 }
 
 }  // namespace
