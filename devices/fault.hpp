@@ -21,6 +21,7 @@ class FaultTracker {
  public:
   FaultTracker(std::string device, FaultPolicy policy) : device_(std::move(device)), policy_(policy) {}
 
+  void opened();                                      // open again: stale until the first good reading
   void good(double now);                              // a valid reading arrived
   void garbage(double now, const std::string& what);  // a reading arrived but is invalid: stays open
   void timeout(double now, const std::string& what);  // open, silent too long
