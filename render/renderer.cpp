@@ -18,6 +18,7 @@
 #include "render/diagonals.hpp"
 #include "render/draw_list.hpp"
 #include "render/framebuffer.hpp"
+#include "render/frustum.hpp"
 #include "render/gl_check.hpp"
 #include "render/jitter.hpp"
 #include "render/light_mixer.hpp"
@@ -52,6 +53,9 @@ struct Renderer::Impl {
   float glass_opacity = 0.25f;
   bool present_to_window = false;
   bool pvs_culling = true;
+  bool frustum_culling = false;
+  std::vector<Box> boxes;  // per polygon, made when frustum culling is first used
+  DrawList frustum_list;   // this frame's list when frustum culling is on
   bool map_overlay = false;
   float map_fraction = 0.35f;
   GLint u_clip_plane = -1;
@@ -279,6 +283,10 @@ void Renderer::set_map_overlay(bool enabled, float fraction) {
   impl_->map_overlay = enabled;
   impl_->map_fraction = fraction;
 }
+void Renderer::set_frustum_culling(bool enabled) {
+  if (impl_->frustum_culling != enabled) impl_->restart = true;
+  impl_->frustum_culling = enabled;
+}
 void Renderer::set_pvs_culling(bool enabled) {
   if (impl_->pvs_culling != enabled) impl_->restart = true;
   impl_->pvs_culling = enabled;
@@ -360,7 +368,26 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     cell = r.bundle.locate_cell(eye);
     if (cell >= r.bundle.cells().size()) cell = FrameStats::kNoCell;
   }
-  const DrawList& list = r.list_for(r.pvs_culling ? cell : FrameStats::kNoCell);
+  const std::uint32_t list_cell = r.pvs_culling ? cell : FrameStats::kNoCell;
+  const DrawList* chosen = &r.list_for(list_cell);
+  if (r.frustum_culling) {
+    // The PVS's polygons (or all), less those wholly outside this frame's frustum, merged again.
+    if (r.boxes.empty()) r.boxes = polygon_boxes(r.bundle.polygons(), r.bundle.vertices());
+    std::span<const std::uint32_t> candidates;
+    std::vector<std::uint32_t> all;
+    if (list_cell < r.bundle.cells().size()) {
+      const auto& record = r.bundle.cells()[list_cell];
+      candidates = r.bundle.pvs().subspan(record.pvs_first, record.pvs_count);
+    } else {
+      all.resize(r.bundle.polygons().size());
+      for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+      candidates = all;
+    }
+    r.frustum_list =
+        build_draw_list(r.bundle.polygons(), in_frustum(view_projection_matrix, r.boxes, candidates));
+    chosen = &r.frustum_list;
+  }
+  const DrawList& list = *chosen;
 
   glBindFramebuffer(GL_FRAMEBUFFER, target.id());
   glViewport(0, 0, width, height);

@@ -87,6 +87,9 @@ class Renderer {
   [[nodiscard]] float glass_opacity() const;
   // Off: every polygon is drawn whatever the eye's cell (for comparison and benchmarks). On by default.
   void set_pvs_culling(bool enabled);
+  // Off by default: also drop PVS polygons whose bounding box is wholly outside the view frustum (costs a
+  // box test per PVS polygon and a list rebuild per frame).
+  void set_frustum_culling(bool enabled);
   void draw(const View& view, int width, int height);
   void draw(const View& view, int width, int height, const DrawOptions& options);
 

@@ -45,6 +45,32 @@ TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
   for (bool seen : cells_seen) EXPECT_TRUE(seen);
 }
 
+// Frustum culling on top of the PVS drops polygons behind or beside the viewer, never a visible one.
+TEST_P(PvsEquivalenceTest, FrustumCulledFrameEqualsUnculledFrame) {
+  auto backend = headless(GetParam());
+  TwoRooms scene;
+  scene.four_cells = true;
+  scene.subdivisions = 3;
+  auto bundle = open_two_rooms(scene, "frustum_equivalence");
+  Renderer culled(*bundle), unculled(*bundle);
+  culled.set_frustum_culling(true);
+  unculled.set_pvs_culling(false);
+  int fewer = 0;
+  for (double x : {1.0, 3.0, 5.0, 7.0})
+    for (int turn = 0; turn < 8; ++turn) {
+      View view;
+      view.eye = {x, 1.5, 1.6};
+      const double a = turn * 0.785398163;
+      view.forward = {std::cos(a), std::sin(a), 0.2 * std::sin(3 * a)};
+      culled.draw(view, kWidth, kHeight);
+      unculled.draw(view, kWidth, kHeight);
+      ASSERT_EQ(culled.read_pixels(kWidth, kHeight).rgba, unculled.read_pixels(kWidth, kHeight).rgba)
+          << "eye " << x << " turn " << turn;
+      fewer += culled.last_stats().polygons_drawn + 3 < unculled.last_stats().polygons_drawn;
+    }
+  EXPECT_GT(fewer, 16) << "the frustum should drop polygons behind the viewer in most views";
+}
+
 INSTANTIATE_TEST_SUITE_P(Headless, PvsEquivalenceTest,
                          ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
