@@ -34,7 +34,17 @@ double FrameGovernor::estimate(std::uint32_t cell, MovingLevel level) const {
   return it == moving_.end() ? -1.0 : it->second[std::size_t(level)];
 }
 
-MovingLevel FrameGovernor::choose_moving(std::uint32_t cell) const {
+MovingLevel FrameGovernor::choose_moving(std::uint32_t cell) {
+  const MovingLevel level = settled(cell);
+  int& count = choices_[cell];
+  if (int(level) + 1 < kMovingLevels && ++count >= kProbeInterval) {
+    count = 0;
+    return MovingLevel(int(level) + 1);
+  }
+  return level;
+}
+
+MovingLevel FrameGovernor::settled(std::uint32_t cell) const {
   for (int l = kMovingLevels - 1; l > 0; --l) {
     const double e = estimate(cell, MovingLevel(l));
     const double below = estimate(cell, MovingLevel(l - 1));

@@ -23,7 +23,10 @@ class FrameGovernor {
   void record_sample(double ms);
   // The best level whose estimate in this cell fits the budget with 10 % headroom. An untried level is tried
   // unless the level below it is known to leave less than a quarter of the budget; Reduced is the floor.
-  [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell) const;
+  // Every `kProbeInterval`-th choice in a cell below the top level tries the next level up once, so an
+  // estimate spoilt by one slow frame (a busy CPU) does not hold the cell down for good.
+  [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell);
+  static constexpr int kProbeInterval = 120;
   // While still: how many accumulation samples fit in one frame (at least 1).
   [[nodiscard]] int samples_per_frame() const;
   // Estimate in ms, or a negative number when never measured.
@@ -34,6 +37,8 @@ class FrameGovernor {
   std::unordered_map<std::uint32_t, std::array<double, kMovingLevels>>
       moving_;  // per cell, per level; < 0 unknown
   double sample_ms_ = -1.0;
+  std::unordered_map<std::uint32_t, int> choices_;  // per cell, since its last probe
+  [[nodiscard]] MovingLevel settled(std::uint32_t cell) const;
 };
 
 }  // namespace walk::render

@@ -110,6 +110,26 @@ TEST(FrameGovernor, HalfResolutionIsTheFloorWhenCoarseIsTooSlow) {
   EXPECT_EQ(governor.choose_moving(5), MovingLevel::Coarse);
 }
 
+TEST(FrameGovernor, ProbesTheNextLevelUpNowAndThen) {
+  FrameGovernor governor(60.0);
+  governor.record_moving(6, MovingLevel::Patches, 40.0);
+  governor.record_moving(6, MovingLevel::Coarse, 40.0);  // one slow frame on a busy CPU
+  governor.record_moving(6, MovingLevel::Reduced, 5.0);
+  int probes = 0;
+  for (int i = 1; i <= 2 * FrameGovernor::kProbeInterval; ++i) {
+    const MovingLevel level = governor.choose_moving(6);
+    if (level != MovingLevel::Reduced) {
+      EXPECT_EQ(level, MovingLevel::Coarse) << "one level up, not two";
+      EXPECT_EQ(i % FrameGovernor::kProbeInterval, 0) << "choice " << i;
+      ++probes;
+    }
+  }
+  EXPECT_EQ(probes, 2);
+  // The probe measured coarse as cheap now: the estimate follows and coarse is chosen from then on.
+  for (int i = 0; i < 10; ++i) governor.record_moving(6, MovingLevel::Coarse, 6.0);
+  EXPECT_EQ(governor.choose_moving(6), MovingLevel::Coarse);
+}
+
 TEST(FrameGovernor, SamplesPerFrameFollowTheSampleCost) {
   FrameGovernor governor(60.0);
   EXPECT_EQ(governor.samples_per_frame(), 1);
