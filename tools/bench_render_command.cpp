@@ -130,9 +130,11 @@ int run(const Options& o) {
     std::printf("scene,section,variant,frames,p50_ms,p99_ms,mean_polygons,note\n");
 
     // Culled and unculled along the same walk; each frame drawn and finished.
-    double p50[2] = {};
-    for (int culled = 0; culled < 2; ++culled) {
+    double p50[3] = {};
+    const char* names[3] = {"unculled", "culled", "culled+frustum"};
+    for (int culled = 0; culled < 3; ++culled) {
       renderer.set_pvs_culling(culled != 0);
+      renderer.set_frustum_culling(culled == 2);
       renderer.draw(walk.front(), width, height);
       glFinish();
       std::vector<double> times;
@@ -145,11 +147,14 @@ int run(const Options& o) {
         polygons += renderer.last_stats().polygons_drawn;
       }
       p50[culled] = percentile(times, 0.5);
-      row(scene, "walk", culled ? "culled" : "unculled", times.size(), p50[culled], percentile(times, 0.99),
+      row(scene, "walk", names[culled], times.size(), p50[culled], percentile(times, 0.99),
           polygons / double(walk.size()), "patches; draw + glFinish");
     }
     std::printf("%s,walk,speedup,%zu,%.2f,,,p50 unculled / p50 culled\n", scene.c_str(), walk.size(),
                 p50[0] / std::max(1e-9, p50[1]));
+    std::printf("%s,walk,speedup-frustum,%zu,%.2f,,,p50 unculled / p50 culled+frustum\n", scene.c_str(),
+                walk.size(), p50[0] / std::max(1e-9, p50[2]));
+    renderer.set_frustum_culling(false);
 
     // Governed: refine() every frame while moving, culled; the governor picks coarse or patches per cell.
     renderer.set_pvs_culling(true);
