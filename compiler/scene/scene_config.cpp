@@ -246,6 +246,45 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);
 }
 
+void read_visibility(const TomlTable& root, SceneConfig& cfg) {
+  const auto t = root.table("visibility");
+  if (!t) return;
+  t->only({"w_occlusion", "w_balance", "w_split", "threshold", "max_depth", "min_cell_size", "method",
+           "sample_points", "rays_per_point", "flow_budget", "ray_caster"});
+  auto& v = cfg.visibility;
+  for (const auto& [key, field] : {std::pair{"w_occlusion", &v.w_occlusion}, std::pair{"w_balance", &v.w_balance},
+                                   std::pair{"w_split", &v.w_split}, std::pair{"threshold", &v.threshold}}) {
+    *field = t->number(key).value_or(*field);
+    if (!(*field >= 0.0 && *field <= 1.0)) t->fail(key, "must be between 0 and 1");
+  }
+  if (const auto d = t->integer("max_depth")) {
+    if (*d < 0 || *d > 64) t->fail("max_depth", "must be between 0 and 64");
+    v.max_depth = static_cast<int>(*d);
+  }
+  v.min_cell_size = positive(*t, "min_cell_size", v.min_cell_size);
+  if (const auto m = t->string("method"))
+    if (!parse_pvs_method(*m, v.method))
+      t->fail("method", "unknown method '" + *m + "' (known: sampled, conservative, combined)");
+  if (const auto s = t->integer("sample_points")) {
+    if (*s < 0 || *s > 1'000'000) t->fail("sample_points", "must be between 0 and 1000000");
+    v.sample_points = static_cast<int>(*s);
+  }
+  if (const auto s = t->integer("rays_per_point")) {
+    if (*s < 1 || *s > 1'000'000) t->fail("rays_per_point", "must be between 1 and 1000000");
+    v.rays_per_point = static_cast<int>(*s);
+  }
+  if (const auto b = t->integer("flow_budget")) {
+    if (*b < 1) t->fail("flow_budget", "must be at least 1");
+    v.flow_budget = static_cast<std::uint64_t>(*b);
+  }
+  if (const auto caster = t->string("ray_caster")) {
+    const auto names = ray_caster_names();
+    if (std::find(names.begin(), names.end(), *caster) == names.end())
+      t->fail("ray_caster", "unknown ray caster '" + *caster + "'");
+    v.ray_caster = *caster;
+  }
+}
+
 }  // namespace
 
 SceneConfig load_scene_config(const std::string& path) {
@@ -253,7 +292,7 @@ SceneConfig load_scene_config(const std::string& path) {
   cfg.path = path;
   const toml::table root_table = parse_toml_file(path, &cfg.text);
   const TomlTable root(root_table, path, "");
-  root.only({"model", "plan", "rules", "materials", "luminaires", "circuits", "lighting"});
+  root.only({"model", "plan", "rules", "materials", "luminaires", "circuits", "lighting", "visibility"});
   read_model(root, cfg);
   read_plan(root, cfg);
   read_rules(root, cfg);
@@ -261,6 +300,7 @@ SceneConfig load_scene_config(const std::string& path) {
   read_luminaires(root, cfg);
   read_circuits(root, cfg);
   read_lighting(root, cfg);
+  read_visibility(root, cfg);
   return cfg;
 }
 

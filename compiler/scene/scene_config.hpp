@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "compiler/import/plan_builder.hpp"
+#include "compiler/visibility/visibility_config.hpp"
 #include "model/model.hpp"
 
 namespace walk::compiler {
@@ -69,6 +70,7 @@ struct SceneConfig {
   std::vector<std::string> luminaire_circuits;  // circuit name of each explicit luminaire
   std::vector<CircuitRule> circuits;
   LightingConfig lighting;
+  VisibilityConfig visibility;  // [visibility]: cells, portals, PVS
   std::string text;  // the file's bytes, part of the scene hash
 };
 

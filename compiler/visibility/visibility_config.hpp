@@ -1,0 +1,38 @@
+#pragma once
+// Knobs of the cells stage: the model-space subdivision (Airey's partition priority), the PVS method and
+// its sample counts. Read from a scene's [visibility] table (compiler/scene/scene_config.cpp).
+#include <cstdint>
+#include <string>
+
+namespace walk::compiler {
+
+enum class PvsMethod {
+  Sampled,       // point sampling with the ray caster: fast, may miss polygons
+  Conservative,  // portal flow with separating planes; every polygon of every cell it reaches (the default)
+  Combined,      // the flow's planes also test each polygon, united with the sampled set: tighter, but it
+                 // still misses a few pixels on two shared models (docs/VISIBILITY.md): not yet conservative
+};
+
+[[nodiscard]] const char* pvs_method_name(PvsMethod m);
+[[nodiscard]] bool parse_pvs_method(const std::string& text, PvsMethod& out);
+
+struct VisibilityConfig {
+  // partition priority = w_occlusion*occlusion + w_balance*balance + w_split*split, each term in 0..1.
+  double w_occlusion = 0.5;
+  double w_balance = 0.3;
+  double w_split = 0.2;
+  // A cell is split only by a plane scoring above this. A plane with no wall in it scores at most
+  // w_balance + w_split = 0.5, so 0.6 asks for at least a fifth of the cross-section to be wall.
+  double threshold = 0.6;
+  int max_depth = 16;          // tree depth limit
+  double min_cell_size = 0.5;  // metres: no cell thinner than this (keeps wall slabs out of the tree)
+  PvsMethod method = PvsMethod::Conservative;
+  int sample_points = 32;                 // sampled PVS: points per cell (half inside, half on its portals)
+  int rays_per_point = 256;               // sampled PVS: directions per point
+  std::uint64_t flow_budget = 2'000'000;  // portal-flow steps per cell before falling back to a flood
+  std::string ray_caster = "axial";
+  unsigned threads = 0;  // 0: hardware concurrency
+  std::uint64_t seed = 1;
+};
+
+}  // namespace walk::compiler
