@@ -22,6 +22,7 @@
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/apply_rules.hpp"
 #include "compiler/scene/luminaires.hpp"
+#include "compiler/visibility/compute_cells.hpp"
 #include "model/error.hpp"
 
 namespace walk::compiler {
@@ -427,17 +428,10 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
                             compact.scale.empty() ? 0.0f : compact.scale[c]});
   {
     StageTimer t(stages, "cells");
-    // Skeleton: one cell holding every drawn polygon. Issue 5 replaces this with the partition and PVS.
-    model::CellRecord cell{};
-    for (int a = 0; a < 3; ++a) {
-      cell.bounds_min[a] = meta.bounds_min[a];
-      cell.bounds_max[a] = meta.bounds_max[a];
-    }
-    cell.pvs_first = 0;
-    cell.pvs_count = static_cast<std::uint32_t>(out.polygons.size());
-    for (std::uint32_t i = 0; i < out.polygons.size(); ++i) out.pvs.push_back(i);
-    out.cells.push_back(cell);
-    t.done(out.polygons.size(), 1, "single cell");
+    VisibilityConfig vis = config.visibility;
+    if (vis.threads == 0) vis.threads = options.threads;
+    const auto counts = compute_cells(out, vis);
+    t.done(counts.polygons_in, counts.cells_out, counts.detail);
   }
   for (const auto& s : stages)
     out.stages.push_back({out.add_string(s.name), s.ran ? 1u : (s.reused ? 2u : 0u),

@@ -1,0 +1,130 @@
+#include "compiler/partition/portals.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "compiler/partition/axial_cover.hpp"
+
+namespace walk::compiler {
+namespace {
+
+// Cell faces within this (metres) of each other are the same plane: they come from one split coordinate,
+// so they agree exactly; the tolerance only absorbs nothing-but-rounding.
+constexpr double kFaceTolerance = 1e-9;
+// Openings smaller than this (m^2) after crack removal are ignored (1 cm^2: a pixel at most).
+constexpr double kMinOpeningArea = 1e-4;
+
+model::Vec3 to_3d(const ClipperLib::IntPoint& p, int axis, double coord) {
+  model::Vec3 q{0.0};
+  q[axis] = coord;
+  q[u_axis(axis)] = double(p.X) / kAxialClipperScale;
+  q[v_axis(axis)] = double(p.Y) / kAxialClipperScale;
+  return q;
+}
+
+ClipperLib::Paths subtract(const ClipperLib::Paths& a, const ClipperLib::Paths& b) {
+  if (b.empty()) return a;
+  ClipperLib::Clipper c;
+  c.AddPaths(a, ClipperLib::ptSubject, true);
+  c.AddPaths(b, ClipperLib::ptClip, true);
+  ClipperLib::Paths out;
+  c.Execute(ClipperLib::ctDifference, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+// Face rectangle shared by two cells, as a Box flat on the axis.
+Box shared_face(const Box& a, const Box& b, int axis, double coord) {
+  Box r;
+  for (int k = 0; k < 3; ++k) {
+    r.min[k] = std::max(a.min[k], b.min[k]);
+    r.max[k] = std::min(a.max[k], b.max[k]);
+  }
+  r.min[axis] = r.max[axis] = coord;
+  return r;
+}
+
+// The open part of a face: rectangle minus the opaque polygons in its plane, cracks removed.
+ClipperLib::Paths open_part(const Box& face, int axis, double coord, const Partition& part,
+                            const std::vector<VisPolygon>& polygons, bool glass_closes) {
+  ClipperLib::Paths region{rect_path(face, axis)};
+  if (const AxialPlane* plane = find_plane(part.planes, axis, coord)) {
+    region = subtract(region, union_of(plane->opaque, polygons, axis, &face));
+    if (glass_closes) region = subtract(region, union_of(plane->glass, polygons, axis, &face));
+  }
+  return open_region(region, kCrackRadius);
+}
+
+}  // namespace
+
+PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& polygons) {
+  PortalGraph g;
+  g.cell_portals.resize(part.cells.size());
+  const auto& cells = part.cells;
+  for (std::uint32_t c = 0; c < cells.size(); ++c) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const int u = u_axis(axis), v = v_axis(axis);
+      // Neighbours across the +axis face.
+      const double x = cells[c].max[axis];
+      for (std::uint32_t d = 0; d < cells.size(); ++d) {
+        if (d == c || std::abs(cells[d].min[axis] - x) > kFaceTolerance) continue;
+        const Box face = shared_face(cells[c], cells[d], axis, x);
+        if (face.max[u] - face.min[u] <= 0.0 || face.max[v] - face.min[v] <= 0.0) continue;
+        ClipperLib::PolyTree tree;
+        {
+          ClipperLib::Clipper k;
+          k.AddPaths(open_part(face, axis, x, part, polygons, false), ClipperLib::ptSubject, true);
+          k.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+        }
+        const ClipperLib::Paths glass_open = open_part(face, axis, x, part, polygons, true);
+        for (const ClipperLib::PolyNode* outer : tree.Childs) {
+          Portal p;
+          p.back = c;
+          p.front = d;
+          p.axis = axis;
+          p.coord = x;
+          ClipperLib::Paths piece{outer->Contour};
+          for (const auto* hole : outer->Childs) piece.push_back(hole->Contour);
+          p.area = area_of(piece);
+          if (p.area < kMinOpeningArea) continue;
+          for (const auto& path : piece) {
+            Winding w;
+            for (const auto& q : path) w.push_back(to_3d(q, axis, x));
+            p.outline.push_back(std::move(w));
+          }
+          model::Vec3 n{0.0};
+          n[axis] = 1.0;
+          p.hull = convex_hull(p.outline.front(), n);
+          // Glazed when glass closes all of it.
+          ClipperLib::Clipper k;
+          k.AddPaths(glass_open, ClipperLib::ptSubject, true);
+          k.AddPaths(piece, ClipperLib::ptClip, true);
+          ClipperLib::Paths left;
+          k.Execute(ClipperLib::ctIntersection, left, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+          p.glazed = area_of(left) < kMinOpeningArea;
+          const auto id = static_cast<std::uint32_t>(g.portals.size());
+          g.cell_portals[c].push_back(id);
+          g.cell_portals[d].push_back(id);
+          g.portals.push_back(std::move(p));
+        }
+      }
+      // The outer boundary: open parts there (neither opaque nor glass) are leaks.
+      for (const bool max_side : {false, true}) {
+        const double at = max_side ? cells[c].max[axis] : cells[c].min[axis];
+        const double edge = max_side ? part.bounds.max[axis] : part.bounds.min[axis];
+        if (std::abs(at - edge) > kFaceTolerance) continue;
+        Box face = cells[c];
+        face.min[axis] = face.max[axis] = at;
+        for (const auto& path : open_part(face, axis, at, part, polygons, true)) {
+          const double area = std::abs(ClipperLib::Area(path)) / (kAxialClipperScale * kAxialClipperScale);
+          if (area < kMinOpeningArea || !ClipperLib::Orientation(path)) continue;
+          model::Vec3 centre{0.0};
+          for (const auto& q : path) centre += to_3d(q, axis, at);
+          g.leaks.push_back({centre / double(path.size()), area, c, axis, max_side});
+        }
+      }
+    }
+  }
+  return g;
+}
+
+}  // namespace walk::compiler

@@ -1,0 +1,45 @@
+#pragma once
+// Portals: the parts of each cell's boundary that no opaque polygon covers, as real polygons (Clipper
+// booleans in the boundary plane), each joining the cell behind it to the cell in front. Glass covers
+// nothing for sight, but closes a hole for the leak check: the building's outer boundary (its bounding box)
+// left open by both opaque and glass polygons is a leak, reported with where it is.
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "compiler/partition/partition.hpp"
+
+namespace walk::compiler {
+
+inline constexpr std::uint32_t kOutside = std::numeric_limits<std::uint32_t>::max();
+// Openings narrower than twice this (metres) are float cracks between abutting polygons, not portals.
+inline constexpr double kCrackRadius = 5e-4;
+
+struct Portal {
+  std::uint32_t back = 0;   // cell on the -axis side
+  std::uint32_t front = 0;  // cell on the +axis side
+  int axis = 0;
+  double coord = 0.0;
+  std::vector<Winding> outline;  // outer loop then its holes, in the plane (3D)
+  Winding hull;                  // convex hull of the outer loop: what the portal flow uses (conservative)
+  double area = 0.0;             // square metres, holes subtracted
+  bool glazed = false;           // wholly covered by glass
+};
+
+struct Leak {
+  model::Vec3 where{0.0};  // local coordinates: a point in the opening
+  double area = 0.0;
+  std::uint32_t cell = 0;  // the cell the opening belongs to
+  int axis = 0;
+  bool max_side = false;  // on the bounding box's +axis face
+};
+
+struct PortalGraph {
+  std::vector<Portal> portals;
+  std::vector<std::vector<std::uint32_t>> cell_portals;  // portal ids touching each cell
+  std::vector<Leak> leaks;
+};
+
+[[nodiscard]] PortalGraph find_portals(const Partition& partition, const std::vector<VisPolygon>& polygons);
+
+}  // namespace walk::compiler

@@ -1,0 +1,42 @@
+#pragma once
+// The cells stage: partition, portals and PVS for a bundle's drawn polygons, written into the bundle as
+// CELL (bounds + PVS range), NODE (the splitting-plane tree, O(depth) lookup) and PVSL (polygon ids).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "compiler/partition/portals.hpp"
+#include "compiler/visibility/visibility_config.hpp"
+#include "model/bundle.hpp"
+
+namespace walk::compiler {
+
+struct VisibilityResult {
+  std::vector<VisPolygon> polygons;
+  Partition partition;
+  PortalGraph graph;
+  std::vector<std::vector<std::uint32_t>> pvs;         // per cell, sorted polygon ids, by config.method
+  std::vector<std::vector<std::uint32_t>> flow_cells;  // per cell, cells reached by portal flow (not Sampled)
+  std::uint64_t flow_steps = 0;
+  std::uint32_t flow_fallbacks = 0;
+  std::uint64_t sample_rays = 0;
+  double seconds_partition = 0.0, seconds_portals = 0.0, seconds_pvs = 0.0;
+  [[nodiscard]] std::string summary() const;  // one line for the stage record and logs
+};
+
+// Everything from the drawn polygons (local coordinates, as in the bundle).
+[[nodiscard]] VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertices,
+                                                  std::span<const std::uint32_t> indices,
+                                                  std::span<const model::PolygonRecord> polygons,
+                                                  const VisibilityConfig& config);
+
+struct CellsStageCounts {
+  std::uint64_t polygons_in = 0;
+  std::uint64_t cells_out = 0;
+  std::string detail;
+};
+
+// Fills out.cells, out.nodes and out.pvs from out's vertices, indices and polygons.
+CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfig& config);
+
+}  // namespace walk::compiler

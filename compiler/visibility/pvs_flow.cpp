@@ -1,0 +1,151 @@
+#include "compiler/visibility/pvs_flow.hpp"
+
+#include <algorithm>
+#include <thread>
+
+#include "compiler/visibility/parallel_for.hpp"
+
+namespace walk::compiler {
+namespace {
+
+struct Directed {
+  const Winding* winding;
+  Plane plane;  // normal pointing into `to`
+  std::uint32_t to;
+};
+
+class Flow {
+ public:
+  Flow(const Partition& part, const PortalGraph& g, const std::vector<VisPolygon>& polys,
+       std::uint64_t budget)
+      : part_(part), polys_(polys), budget_(budget), out_(part.cells.size()) {
+    for (std::uint32_t c = 0; c < part.cells.size(); ++c)
+      for (const auto id : g.cell_portals[c]) {
+        const Portal& p = g.portals[id];
+        Plane pl;
+        pl.n[p.axis] = p.back == c ? 1.0 : -1.0;
+        pl.d = -pl.n[p.axis] * p.coord;
+        out_[c].push_back({&p.hull, pl, p.back == c ? p.front : p.back});
+      }
+  }
+
+  void run(std::uint32_t cell, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& visible,
+           std::uint64_t& steps, bool& fell_back) {
+    seen_cell_.assign(part_.cells.size(), 0);
+    seen_poly_.assign(polys_.size(), 0);
+    on_stack_.assign(part_.cells.size(), 0);
+    steps_ = 0;
+    mark_all(cell);
+    on_stack_[cell] = 1;
+    for (const auto& d : out_[cell]) {
+      source_plane_ = d.plane;
+      recurse(d.to, *d.winding, nullptr, nullptr);
+      if (steps_ > budget_) break;
+    }
+    fell_back = steps_ > budget_;
+    if (fell_back) flood(cell);
+    steps += steps_;
+    for (std::uint32_t c = 0; c < seen_cell_.size(); ++c)
+      if (seen_cell_[c]) cells.push_back(c);
+    for (std::uint32_t p = 0; p < seen_poly_.size(); ++p)
+      if (seen_poly_[p]) visible.push_back(p);
+  }
+
+ private:
+  void mark_all(std::uint32_t c) {
+    seen_cell_[c] = 1;
+    for (const auto p : part_.cell_polygons[c]) seen_poly_[p] = 1;
+  }
+
+  void flood(std::uint32_t start) {
+    std::vector<std::uint32_t> stack{start};
+    std::vector<char> done(part_.cells.size(), 0);
+    done[start] = 1;
+    while (!stack.empty()) {
+      const auto c = stack.back();
+      stack.pop_back();
+      mark_all(c);
+      for (const auto& d : out_[c])
+        if (!done[d.to]) {
+          done[d.to] = 1;
+          stack.push_back(d.to);
+        }
+    }
+  }
+
+  static bool survives(Winding w, const std::vector<Plane>& planes) {
+    for (const auto& p : planes) {
+      w = clip_front(w, p);
+      if (w.empty()) return false;
+    }
+    return true;
+  }
+
+  // Entering `cell`, seen from `source` (part of the first portal) through `pass` (the last portal passed,
+  // clipped), or directly through the first portal when pass is null.
+  void recurse(std::uint32_t cell, const Winding& source, const Winding* pass, const Plane* pass_plane) {
+    if (++steps_ > budget_) return;
+    std::vector<Plane> seps;
+    if (!pass) {
+      mark_all(cell);  // the cell just beyond the first portal: anything in it may be seen
+    } else {
+      seen_cell_[cell] = 1;
+      separating_planes(source, *pass, false, seps);
+      separating_planes(*pass, source, true, seps);
+      std::vector<Plane> test = seps;
+      test.push_back(*pass_plane);
+      test.push_back(source_plane_);
+      for (const auto p : part_.cell_polygons[cell])
+        if (!seen_poly_[p] && survives(polys_[p].hull, test)) seen_poly_[p] = 1;
+    }
+    on_stack_[cell] = 1;
+    for (const auto& d : out_[cell]) {
+      if (on_stack_[d.to]) continue;
+      // The source must lie behind the next portal to see through it.
+      const Winding next_source = clip_front(source, d.plane.flipped());
+      if (next_source.empty()) continue;
+      Winding target = clip_front(*d.winding, source_plane_);
+      for (const auto& s : seps) {
+        if (target.empty()) break;
+        target = clip_front(target, s);
+      }
+      if (target.empty()) continue;
+      recurse(d.to, next_source, &target, &d.plane);
+      if (steps_ > budget_) break;
+    }
+    on_stack_[cell] = 0;
+  }
+
+  const Partition& part_;
+  const std::vector<VisPolygon>& polys_;
+  std::uint64_t budget_;
+  std::vector<std::vector<Directed>> out_;
+  std::vector<char> seen_cell_, seen_poly_, on_stack_;
+  Plane source_plane_;
+  std::uint64_t steps_ = 0;
+};
+
+}  // namespace
+
+FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
+                        const std::vector<VisPolygon>& polygons, std::uint64_t budget, unsigned threads) {
+  FlowPvs r;
+  const std::size_t n = partition.cells.size();
+  r.cells.resize(n);
+  r.polygons.resize(n);
+  std::vector<std::uint64_t> steps(n, 0);
+  std::vector<char> fell(n, 0);
+  parallel_for(n, threads, [&](std::size_t c) {
+    Flow flow(partition, graph, polygons, budget);
+    bool fb = false;
+    flow.run(static_cast<std::uint32_t>(c), r.cells[c], r.polygons[c], steps[c], fb);
+    fell[c] = fb;
+  });
+  for (std::size_t c = 0; c < n; ++c) {
+    r.steps += steps[c];
+    r.fallbacks += fell[c];
+  }
+  return r;
+}
+
+}  // namespace walk::compiler

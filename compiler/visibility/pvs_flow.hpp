@@ -1,0 +1,24 @@
+#pragma once
+// Conservative PVS by portal flow (Teller & Sequin 1991 as done in Quake's vis): from each portal of a cell,
+// walk portal sequences, clipping each next portal by the separating planes of the source portal and the
+// last portal passed; a cell is reached when some sequence survives to it. Each polygon of a reached cell is
+// then tested against the same planes, which makes the set tight per polygon, not just per cell.
+#include <cstdint>
+#include <vector>
+
+#include "compiler/partition/portals.hpp"
+
+namespace walk::compiler {
+
+struct FlowPvs {
+  std::vector<std::vector<std::uint32_t>> cells;     // per cell: cells reached (sorted, itself included)
+  std::vector<std::vector<std::uint32_t>> polygons;  // per cell: polygons passing the plane test (sorted)
+  std::uint64_t steps = 0;                           // recursion steps in all
+  std::uint32_t fallbacks = 0;                       // cells whose flow ran past the budget (flooded instead)
+};
+
+[[nodiscard]] FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
+                                      const std::vector<VisPolygon>& polygons, std::uint64_t budget,
+                                      unsigned threads);
+
+}  // namespace walk::compiler

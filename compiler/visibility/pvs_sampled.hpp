@@ -1,0 +1,29 @@
+#pragma once
+// Point-sampled PVS (the paper's fast class): rays from random points in each cell and on its portals
+// (aimed out through them) in random directions; every polygon a ray meets is visible. It never adds a
+// polygon that cannot be seen, but it may miss small or distant ones.
+#include <cstdint>
+#include <vector>
+
+#include "compiler/partition/portals.hpp"
+#include "compiler/raycast/ray_caster.hpp"
+
+namespace walk::compiler {
+
+struct SampledPvsOptions {
+  int points = 32;  // per cell: half inside the cell, half on its portals
+  int rays_per_point = 256;
+  std::uint64_t seed = 1;
+  unsigned threads = 0;
+};
+
+[[nodiscard]] std::vector<std::vector<std::uint32_t>> sampled_pvs(
+    const Partition& partition, const PortalGraph& graph, const std::vector<VisPolygon>& polygons,
+    const RayCaster& caster, const SampledPvsOptions& options, std::uint64_t* rays = nullptr);
+
+// A uniformly random point in a convex winding (fan triangles weighted by area); its first point when
+// degenerate.
+template <class Rng>
+[[nodiscard]] model::Vec3 random_point_in(const Winding& w, Rng& rng);
+
+}  // namespace walk::compiler

@@ -1,0 +1,134 @@
+#include "compiler/visibility/verify_visibility.hpp"
+
+#include <algorithm>
+#include <glm/geometric.hpp>
+#include <random>
+
+#include "compiler/visibility/parallel_for.hpp"
+#include "compiler/visibility/trace_through_glass.hpp"
+
+namespace walk::compiler {
+namespace {
+
+// Viewpoints keep this far (metres) inside their cell, so the tree puts them in it and not on a face.
+constexpr double kInset = 1e-3;
+
+// Cube face f: forward, right, up (right x up = forward, the usual cube map frames).
+void face_frame(int f, model::Vec3& fwd, model::Vec3& right, model::Vec3& up) {
+  const int axis = f / 2;
+  const double s = (f % 2) ? -1.0 : 1.0;
+  fwd = model::Vec3{0.0};
+  fwd[axis] = s;
+  right = model::Vec3{0.0};
+  right[(axis + 1) % 3] = s;
+  up = glm::cross(fwd, right);
+}
+
+model::Vec3 inset_point(const Box& b, const model::Vec3& t) {
+  model::Vec3 p;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = b.min[a] + std::min(kInset, 0.25 * (b.max[a] - b.min[a]));
+    const double hi = b.max[a] - std::min(kInset, 0.25 * (b.max[a] - b.min[a]));
+    p[a] = lo + t[a] * (hi - lo);
+  }
+  return p;
+}
+
+}  // namespace
+
+VisibilityJudge::VisibilityJudge(std::span<const model::VertexRecord> vertices,
+                                 std::span<const std::uint32_t> indices,
+                                 std::span<const model::PolygonRecord> polygons, const VerifyOptions& options)
+    : options_(options), polygons_(vis_polygons(vertices, indices, polygons)) {
+  std::vector<Triangle> triangles;
+  glass_.resize(polygons_.size());
+  for (std::uint32_t p = 0; p < polygons_.size(); ++p) {
+    glass_[p] = polygons_[p].glass;
+    for (const auto& t : polygons_[p].triangles) triangles.push_back({t[0], t[1], t[2], p});
+  }
+  caster_ = make_ray_caster(options.ray_caster, triangles);
+}
+
+void VisibilityJudge::cube(const model::Vec3& eye, int res, CellViews* keep, std::vector<char>& seen) const {
+  const std::size_t n = std::size_t(res) * std::size_t(res);
+  for (int f = 0; f < 6; ++f) {
+    model::Vec3 fwd, right, up;
+    face_frame(f, fwd, right, up);
+    std::vector<std::vector<std::uint32_t>> rows(static_cast<std::size_t>(res));
+    std::vector<std::vector<std::uint32_t>> row_offsets(static_cast<std::size_t>(res));
+    parallel_for(static_cast<std::size_t>(res), options_.threads, [&](std::size_t y) {
+      auto& ids = rows[y];
+      for (int x = 0; x < res; ++x) {
+        Ray ray;
+        ray.origin = eye;
+        ray.dir =
+            fwd + right * ((2.0 * (x + 0.5)) / res - 1.0) + up * ((2.0 * (double(y) + 0.5)) / res - 1.0);
+        trace_through_glass(*caster_, ray, glass_, ids);
+        row_offsets[y].push_back(static_cast<std::uint32_t>(ids.size()));
+      }
+    });
+    for (std::size_t y = 0; y < rows.size(); ++y) {
+      for (const auto id : rows[y]) seen[id] = 1;
+      if (keep) {
+        const auto base = static_cast<std::uint32_t>(keep->ids.size());
+        keep->ids.insert(keep->ids.end(), rows[y].begin(), rows[y].end());
+        for (const auto o : row_offsets[y]) keep->offsets.push_back(base + o);
+      }
+    }
+  }
+  (void)n;
+}
+
+CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index) const {
+  CellViews v;
+  std::vector<char> seen(glass_.size(), 0);
+  std::mt19937_64 rng(options_.seed * 0x9E3779B97F4A7C15ull + cell_index);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < options_.viewpoints; ++i)
+    cube(inset_point(cell, {u(rng), u(rng), u(rng)}), options_.resolution, &v, seen);
+  const int d = options_.dense;
+  for (int i = 0; i < d; ++i)
+    for (int j = 0; j < d; ++j)
+      for (int k = 0; k < d; ++k)
+        cube(inset_point(cell, {(i + 0.5) / d, (j + 0.5) / d, (k + 0.5) / d}), options_.dense_resolution,
+             nullptr, seen);
+  for (std::uint32_t p = 0; p < seen.size(); ++p)
+    if (seen[p]) v.exact.push_back(p);
+  return v;
+}
+
+std::uint64_t VisibilityJudge::missed(const CellViews& views, const std::vector<std::uint32_t>& pvs) const {
+  std::vector<char> in(glass_.size(), 0);
+  for (const auto p : pvs)
+    if (p < in.size()) in[p] = 1;
+  std::uint64_t missed = 0;
+  for (std::size_t px = 0; px + 1 < views.offsets.size(); ++px)
+    for (std::uint32_t i = views.offsets[px]; i < views.offsets[px + 1]; ++i)
+      if (!in[views.ids[i]]) {
+        ++missed;
+        break;
+      }
+  return missed;
+}
+
+void summarise(VerifyReport& r) {
+  r.missed = r.pixels = 0;
+  std::uint64_t pvs = 0, exact = 0;
+  r.pvs_worst = 0;
+  r.ratio_worst = 0.0;
+  for (const auto& row : r.rows) {
+    r.missed += row.missed;
+    r.pixels += row.pixels;
+    pvs += row.pvs;
+    exact += row.exact;
+    r.pvs_worst = std::max(r.pvs_worst, row.pvs);
+    if (row.exact > 0) r.ratio_worst = std::max(r.ratio_worst, double(row.pvs) / double(row.exact));
+  }
+  const double n = std::max<double>(1.0, double(r.rows.size()));
+  r.pvs_average = double(pvs) / n;
+  r.exact_average = double(exact) / n;
+  r.ratio = exact > 0 ? double(pvs) / double(exact) : 0.0;
+  r.reduction = r.pvs_average > 0.0 ? double(r.polygons) / r.pvs_average : 0.0;
+}
+
+}  // namespace walk::compiler

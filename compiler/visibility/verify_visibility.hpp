@@ -1,0 +1,71 @@
+#pragma once
+// Measures a PVS against what can really be seen. For random viewpoints in every cell, six cube faces of
+// polygon-ID images are ray cast over the full model (through glass); a pixel is missed when a polygon on its
+// sight line is not in the cell's PVS: exactly the pixels where the PVS-only image would differ. Each cell's
+// exact visible set is estimated as the union of IDs seen from a dense grid of viewpoints in it (a lower
+// bound, so PVS/exact is an upper estimate of the overdraw ratio).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "compiler/raycast/ray_caster.hpp"
+#include "compiler/visibility/vis_geometry.hpp"
+
+namespace walk::compiler {
+
+struct VerifyOptions {
+  int viewpoints = 4;          // random viewpoints per cell for the missed-pixel count
+  int resolution = 512;        // cube face size for those
+  int dense = 3;               // dense viewpoints per axis per cell (dense^3) for the exact set
+  int dense_resolution = 128;  // cube face size for those
+  std::string ray_caster = "axial";
+  unsigned threads = 0;
+  std::uint64_t seed = 7;
+};
+
+// What the sight lines from a cell's viewpoints met: per pixel the ids along it (glass, then the stop).
+struct CellViews {
+  std::vector<std::uint32_t> ids;
+  std::vector<std::uint32_t> offsets{0};  // pixel p's ids: ids[offsets[p] .. offsets[p+1])
+  std::vector<std::uint32_t> exact;       // union over the dense viewpoints and these, sorted
+};
+
+class VisibilityJudge {
+ public:
+  VisibilityJudge(std::span<const model::VertexRecord> vertices, std::span<const std::uint32_t> indices,
+                  std::span<const model::PolygonRecord> polygons, const VerifyOptions& options);
+  [[nodiscard]] CellViews views(const Box& cell, std::uint32_t cell_index) const;
+  // Pixels of `views` whose sight line meets a polygon not in `pvs` (sorted ids).
+  [[nodiscard]] std::uint64_t missed(const CellViews& views, const std::vector<std::uint32_t>& pvs) const;
+  [[nodiscard]] std::size_t polygon_count() const { return glass_.size(); }
+  [[nodiscard]] const std::vector<VisPolygon>& polygons() const { return polygons_; }
+
+ private:
+  void cube(const model::Vec3& eye, int resolution, CellViews* keep, std::vector<char>& seen) const;
+  VerifyOptions options_;
+  std::vector<VisPolygon> polygons_;
+  std::vector<char> glass_;
+  std::unique_ptr<RayCaster> caster_;
+};
+
+struct VerifyRow {
+  std::uint32_t cell = 0;
+  std::uint64_t pvs = 0, exact = 0, missed = 0, pixels = 0;
+};
+
+struct VerifyReport {
+  std::size_t cells = 0, portals = 0, polygons = 0;
+  std::uint64_t missed = 0, pixels = 0;
+  double pvs_average = 0.0, exact_average = 0.0;
+  std::uint64_t pvs_worst = 0;
+  double ratio = 0.0;        // sum of PVS sizes / sum of exact sizes
+  double ratio_worst = 0.0;  // worst cell's PVS / exact
+  double reduction = 0.0;    // polygons / average PVS
+  std::vector<VerifyRow> rows;
+};
+
+// Summarises per-cell rows into a report (cells, portals and polygons filled by the caller).
+void summarise(VerifyReport& report);
+
+}  // namespace walk::compiler

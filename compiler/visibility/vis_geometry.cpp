@@ -1,0 +1,165 @@
+#include "compiler/visibility/vis_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+namespace walk::compiler {
+
+bool Box::contains(const model::Vec3& p, double tol) const {
+  for (int a = 0; a < 3; ++a)
+    if (p[a] < min[a] - tol || p[a] > max[a] + tol) return false;
+  return true;
+}
+
+bool Box::overlaps(const Box& o, double tol) const {
+  for (int a = 0; a < 3; ++a)
+    if (o.max[a] < min[a] - tol || o.min[a] > max[a] + tol) return false;
+  return true;
+}
+
+Winding clip_front(const Winding& w, const Plane& p) {
+  if (w.empty()) return {};
+  std::vector<double> d(w.size());
+  bool any_back = false, any_front = false;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    d[i] = p.distance(w[i]);
+    if (d[i] < -kPlaneEpsilon) any_back = true;
+    if (d[i] > kPlaneEpsilon) any_front = true;
+  }
+  if (!any_back) return w;
+  if (!any_front) {
+    // Entirely behind, unless some points touch the plane: keep those (a contact still lets sight through
+    // an edge, and keeping it is the conservative choice).
+    Winding on;
+    for (std::size_t i = 0; i < w.size(); ++i)
+      if (d[i] >= -kPlaneEpsilon) on.push_back(w[i]);
+    return on;
+  }
+  Winding out;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const std::size_t j = (i + 1) % w.size();
+    if (d[i] >= -kPlaneEpsilon) out.push_back(w[i]);
+    // An edge crossing from strictly one side to strictly the other gets the crossing point.
+    if ((d[i] > kPlaneEpsilon && d[j] < -kPlaneEpsilon) || (d[i] < -kPlaneEpsilon && d[j] > kPlaneEpsilon)) {
+      const double t = d[i] / (d[i] - d[j]);
+      out.push_back(w[i] + (w[j] - w[i]) * t);
+    }
+  }
+  return out;
+}
+
+Winding convex_hull(const std::vector<model::Vec3>& points, const model::Vec3& normal) {
+  if (points.empty()) return {};
+  const model::Vec3 n = glm::length(normal) > 0.0 ? glm::normalize(normal) : model::Vec3{0, 0, 1};
+  const model::Vec3 helper = std::abs(n.x) < 0.9 ? model::Vec3{1, 0, 0} : model::Vec3{0, 1, 0};
+  const model::Vec3 u = glm::normalize(glm::cross(helper, n));
+  const model::Vec3 v = glm::cross(n, u);
+  std::vector<std::pair<std::pair<double, double>, std::size_t>> q;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    q.push_back({{glm::dot(points[i] - points[0], u), glm::dot(points[i] - points[0], v)}, i});
+  std::sort(q.begin(), q.end());
+  q.erase(std::unique(q.begin(), q.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+          q.end());
+  if (q.size() == 1) return {points[q[0].second]};
+  auto cross = [&](std::size_t o, std::size_t a, std::size_t b) {
+    const auto& O = q[o].first;
+    const auto& A = q[a].first;
+    const auto& B = q[b].first;
+    return (A.first - O.first) * (B.second - O.second) - (A.second - O.second) * (B.first - O.first);
+  };
+  // Andrew's monotone chain; collinear points are dropped (cross <= 0 pops).
+  std::vector<std::size_t> hull(2 * q.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], i) <= 0.0) --k;
+    hull[k++] = i;
+  }
+  for (std::size_t i = q.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], i) <= 0.0) --k;
+    hull[k++] = i;
+  }
+  if (k > 1) --k;  // the last point repeats the first
+  Winding w;
+  for (std::size_t i = 0; i < k; ++i) w.push_back(points[q[hull[i]].second]);
+  return w;
+}
+
+void separating_planes(const Winding& source, const Winding& pass, bool flip, std::vector<Plane>& out) {
+  // Normals shorter than this (m^2: cross product of edge and offset) come from a pass point on the line of
+  // the source edge: no plane.
+  constexpr double kMinNormal = 1e-10;
+  const std::size_t ns = source.size(), np = pass.size();
+  if (ns < 2 || np == 0) return;
+  for (std::size_t i = 0; i < ns; ++i) {
+    const model::Vec3& a = source[i];
+    const model::Vec3& b = source[(i + 1) % ns];
+    if (ns == 2 && i == 1) break;
+    for (std::size_t j = 0; j < np; ++j) {
+      const model::Vec3 c = glm::cross(b - a, pass[j] - a);
+      const double len = glm::length(c);
+      if (len < kMinNormal) continue;
+      Plane pl{c / len, -glm::dot(c / len, a)};
+      // Source behind: find a source point off the plane to decide the orientation.
+      int side = 0;
+      for (std::size_t k = 0; k < ns && side == 0; ++k) {
+        const double d = pl.distance(source[k]);
+        if (d < -kPlaneEpsilon)
+          side = -1;
+        else if (d > kPlaneEpsilon)
+          side = 1;
+      }
+      if (side == 0) continue;  // the plane holds the whole source
+      if (side > 0) pl = pl.flipped();
+      // Pass wholly in front, or it does not separate.
+      bool separates = true, off_plane = false;
+      for (std::size_t k = 0; k < np && separates; ++k) {
+        const double d = pl.distance(pass[k]);
+        if (d < -kPlaneEpsilon) separates = false;
+        off_plane |= d > kPlaneEpsilon;
+      }
+      if (!separates || !off_plane) continue;  // pass behind in part, or wholly in the plane
+      out.push_back(flip ? pl.flipped() : pl);
+    }
+  }
+}
+
+std::vector<VisPolygon> vis_polygons(std::span<const model::VertexRecord> vertices,
+                                     std::span<const std::uint32_t> indices,
+                                     std::span<const model::PolygonRecord> polygons) {
+  std::vector<VisPolygon> out(polygons.size());
+  for (std::size_t p = 0; p < polygons.size(); ++p) {
+    const auto& rec = polygons[p];
+    auto& vp = out[p];
+    vp.opaque = rec.role == static_cast<std::uint32_t>(model::Role::Opaque) ||
+                rec.role == static_cast<std::uint32_t>(model::Role::Luminaire);
+    vp.glass = rec.role == static_cast<std::uint32_t>(model::Role::Glass);
+    model::Bounds b;
+    model::Vec3 area_normal{0.0};
+    std::vector<model::Vec3> pts;
+    for (std::uint32_t i = rec.first_index; i + 2 < rec.first_index + rec.index_count; i += 3) {
+      std::array<model::Vec3, 3> t;
+      for (int k = 0; k < 3; ++k) {
+        const auto& v = vertices[indices[i + k]].position;
+        t[k] = {v[0], v[1], v[2]};
+        b.add(t[k]);
+        pts.push_back(t[k]);
+      }
+      area_normal += glm::cross(t[1] - t[0], t[2] - t[0]);
+      vp.triangles.push_back(t);
+    }
+    if (b.empty()) continue;
+    vp.box = {b.min, b.max};
+    const double len = glm::length(area_normal);
+    vp.normal = len > 0.0 ? area_normal / len : model::Vec3{0.0};
+    vp.hull = convex_hull(pts, vp.normal);
+    for (int a = 0; a < 3; ++a)
+      if (std::abs(vp.normal[a]) >= kAxialCosine && b.max[a] - b.min[a] <= kInPlaneTolerance) {
+        vp.axis = a;
+        vp.coord = 0.5 * (b.min[a] + b.max[a]);
+      }
+  }
+  return out;
+}
+
+}  // namespace walk::compiler

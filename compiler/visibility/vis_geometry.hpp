@@ -1,0 +1,69 @@
+#pragma once
+// Geometry the visibility stages share: axis-aligned boxes, planes, convex windings and their clipping,
+// the drawn polygons of a bundle in double precision.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "model/bundle_format.hpp"
+#include "model/model.hpp"
+
+namespace walk::compiler {
+
+// Points closer than this to a plane count as on it (10 um: above float rounding of bundle coordinates in a
+// 1 km building, 6e-5 m relative... well below any wall thickness). Clipping keeps "on" points, so it errs
+// towards seeing more: conservative.
+inline constexpr double kPlaneEpsilon = 1e-5;
+// Polygons whose vertices lie within this of a plane are in that plane (float bundle coordinates are
+// rounded to ~1e-7 relative: 0.1 mm at 1 km).
+inline constexpr double kInPlaneTolerance = 1e-4;
+// A polygon normal within this (cosine) of an axis is axial: a candidate splitting plane.
+inline constexpr double kAxialCosine = 0.99999;
+
+struct Box {
+  model::Vec3 min{0.0};
+  model::Vec3 max{0.0};
+  [[nodiscard]] bool contains(const model::Vec3& p, double tol = 0.0) const;
+  [[nodiscard]] bool overlaps(const Box& o, double tol) const;
+  [[nodiscard]] model::Vec3 size() const { return max - min; }
+};
+
+struct Plane {
+  model::Vec3 n{0.0, 0.0, 1.0};
+  double d = 0.0;  // n.p + d = 0
+  [[nodiscard]] double distance(const model::Vec3& p) const { return n.x * p.x + n.y * p.y + n.z * p.z + d; }
+  [[nodiscard]] Plane flipped() const { return {-n, -d}; }
+};
+
+using Winding = std::vector<model::Vec3>;  // convex, planar
+
+// Keeps the part of `w` on the front side of `p` (distance >= -kPlaneEpsilon); points within epsilon count
+// as on the plane and stay. Empty when all of `w` is behind.
+[[nodiscard]] Winding clip_front(const Winding& w, const Plane& p);
+
+// Convex hull of planar points, as a winding in their plane (counter-clockwise about `normal`). Fewer than
+// three distinct points, or collinear ones, give the distinct extreme points (a degenerate winding).
+[[nodiscard]] Winding convex_hull(const std::vector<model::Vec3>& points, const model::Vec3& normal);
+
+// Quake vis's separating planes between `source` and `pass`: a plane through an edge of source and a point
+// of pass with source behind and pass in front; `flip` reverses them. Degenerate planes are skipped.
+void separating_planes(const Winding& source, const Winding& pass, bool flip, std::vector<Plane>& out);
+
+// A drawn polygon of the bundle (opaque, glass, luminaire panel) in double precision.
+struct VisPolygon {
+  std::vector<std::array<model::Vec3, 3>> triangles;
+  Winding hull;  // convex hull of its vertices in its plane: conservative stand-in for visibility tests
+  model::Vec3 normal{0.0};
+  Box box;
+  bool opaque = false;  // blocks sight lines (glass does not)
+  bool glass = false;
+  int axis = -1;       // 0..2 when the polygon lies in an axial plane
+  double coord = 0.0;  // its plane's coordinate on that axis
+};
+
+[[nodiscard]] std::vector<VisPolygon> vis_polygons(std::span<const model::VertexRecord> vertices,
+                                                   std::span<const std::uint32_t> indices,
+                                                   std::span<const model::PolygonRecord> polygons);
+
+}  // namespace walk::compiler
