@@ -1,0 +1,176 @@
+// walk verify visibility x.walk: the bundle's PVS against ID images ray cast over the full model, and with
+// --sweep, what each PVS method and sample count costs in precompute time against missed pixels and size.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "compiler/partition/portals.hpp"
+#include "compiler/visibility/compute_cells.hpp"
+#include "compiler/visibility/verify_visibility.hpp"
+#include "model/bundle.hpp"
+#include "tools/commands.hpp"
+
+namespace walk::tools {
+namespace {
+
+using namespace walk::compiler;
+
+struct VerifyArgs {
+  std::string bundle;
+  VerifyOptions options;
+  std::string sweep;  // CSV path; empty: verify the bundle's own PVS
+  bool quiet = false;
+};
+
+std::vector<std::vector<std::uint32_t>> bundle_pvs(const model::Bundle& b) {
+  std::vector<std::vector<std::uint32_t>> out;
+  for (const auto& c : b.cells())
+    out.emplace_back(b.pvs().begin() + c.pvs_first, b.pvs().begin() + c.pvs_first + c.pvs_count);
+  return out;
+}
+
+VerifyReport judge(const VisibilityJudge& judge, const std::vector<CellViews>& views,
+                   const std::vector<std::vector<std::uint32_t>>& pvs) {
+  VerifyReport r;
+  for (std::uint32_t c = 0; c < views.size(); ++c) {
+    VerifyRow row;
+    row.cell = c;
+    row.pvs = pvs[c].size();
+    row.exact = views[c].exact.size();
+    row.missed = judge.missed(views[c], pvs[c]);
+    row.pixels = views[c].offsets.size() - 1;
+    r.rows.push_back(row);
+  }
+  r.polygons = judge.polygon_count();
+  r.cells = views.size();
+  summarise(r);
+  return r;
+}
+
+int verify(const VerifyArgs& args) {
+  const auto b = model::Bundle::open(args.bundle);
+  const VisibilityJudge j(b->vertices(), b->indices(), b->polygons(), args.options);
+  // Portals are derived data: recomputed from the stored cells and polygons.
+  Partition part;
+  part.planes = axial_planes(j.polygons());
+  model::Bounds bounds;
+  for (const auto& c : b->cells()) {
+    Box box{{c.bounds_min[0], c.bounds_min[1], c.bounds_min[2]},
+            {c.bounds_max[0], c.bounds_max[1], c.bounds_max[2]}};
+    bounds.add(box.min);
+    bounds.add(box.max);
+    part.cells.push_back(box);
+  }
+  part.bounds = {bounds.min, bounds.max};
+  part.cell_polygons.resize(part.cells.size());
+  const PortalGraph graph = find_portals(part, j.polygons());
+
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<CellViews> views;
+  for (std::uint32_t c = 0; c < part.cells.size(); ++c) views.push_back(j.views(part.cells[c], c));
+  const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  if (!args.sweep.empty()) {
+    std::FILE* csv = std::fopen(args.sweep.c_str(), "w");
+    if (!csv) {
+      std::fprintf(stderr, "walk verify: cannot write %s\n", args.sweep.c_str());
+      return 1;
+    }
+    std::fprintf(csv,
+                 "method,points,rays_per_point,seconds,missed_pixels,pixels,pvs_avg,pvs_worst,ratio,cells\n");
+    struct Setting {
+      PvsMethod method;
+      int points, rays;
+    };
+    std::vector<Setting> settings;
+    for (const int points : {2, 8, 32, 128}) settings.push_back({PvsMethod::Sampled, points, 256});
+    settings.push_back({PvsMethod::Conservative, 0, 1});
+    settings.push_back({PvsMethod::Combined, 32, 256});
+    for (const auto& s : settings) {
+      VisibilityConfig cfg;
+      cfg.method = s.method;
+      cfg.sample_points = s.points;
+      cfg.rays_per_point = s.rays;
+      cfg.threads = args.options.threads;
+      const auto t = std::chrono::steady_clock::now();
+      const VisibilityResult vr = compute_visibility(b->vertices(), b->indices(), b->polygons(), cfg);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+      if (vr.partition.cells.size() != views.size()) {
+        std::fprintf(stderr,
+                     "walk verify: --sweep needs a bundle compiled with the default partition knobs\n");
+        std::fclose(csv);
+        return 1;
+      }
+      const VerifyReport r = judge(j, views, vr.pvs);
+      std::fprintf(csv, "%s,%d,%d,%.3f,%llu,%llu,%.1f,%llu,%.3f,%zu\n", pvs_method_name(s.method), s.points,
+                   s.rays, seconds, static_cast<unsigned long long>(r.missed),
+                   static_cast<unsigned long long>(r.pixels), r.pvs_average,
+                   static_cast<unsigned long long>(r.pvs_worst), r.ratio, r.cells);
+      std::printf(
+          "%-12s points %4d rays %4d: %7.2f s, missed %llu of %llu pixels, PVS avg %.1f, PVS/exact %.3f\n",
+          pvs_method_name(s.method), s.points, s.rays, seconds, static_cast<unsigned long long>(r.missed),
+          static_cast<unsigned long long>(r.pixels), r.pvs_average, r.ratio);
+    }
+    std::fclose(csv);
+    return 0;
+  }
+
+  VerifyReport r = judge(j, views, bundle_pvs(*b));
+  r.portals = graph.portals.size();
+  const auto pvs = bundle_pvs(*b);
+  if (!args.quiet)
+    for (const auto& row : r.rows) {
+      std::printf("cell %4u: PVS %6llu exact %6llu missed %llu", row.cell,
+                  static_cast<unsigned long long>(row.pvs), static_cast<unsigned long long>(row.exact),
+                  static_cast<unsigned long long>(row.missed));
+      // Name the polygons behind missed pixels, with where they are, to find the cause.
+      for (const auto id : views[row.cell].ids)
+        if (row.missed && !std::binary_search(pvs[row.cell].begin(), pvs[row.cell].end(), id)) {
+          const auto& p = j.polygons()[id];
+          std::printf(" [polygon %u at (%.2f %.2f %.2f)..(%.2f %.2f %.2f)]", id, p.box.min.x, p.box.min.y,
+                      p.box.min.z, p.box.max.x, p.box.max.y, p.box.max.z);
+          break;
+        }
+      std::printf("\n");
+    }
+  std::printf("bundle %s: %zu polygons, %zu cells, %zu portals, %zu leaks\n", args.bundle.c_str(), r.polygons,
+              r.cells, r.portals, graph.leaks.size());
+  std::printf("viewpoints per cell %d at %dx%d x6, dense %d^3 at %dx%d x6 (%.1f s)\n",
+              args.options.viewpoints, args.options.resolution, args.options.resolution, args.options.dense,
+              args.options.dense_resolution, args.options.dense_resolution, render_s);
+  std::printf("missed pixels %llu of %llu\n", static_cast<unsigned long long>(r.missed),
+              static_cast<unsigned long long>(r.pixels));
+  std::printf("PVS / exact %.3f (worst cell %.3f)\n", r.ratio, r.ratio_worst);
+  std::printf("polygons drawn average %.1f worst %llu (exact average %.1f)\n", r.pvs_average,
+              static_cast<unsigned long long>(r.pvs_worst), r.exact_average);
+  std::printf("reduction factor %.2f\n", r.reduction);
+  return r.missed == 0 ? 0 : 2;
+}
+
+}  // namespace
+
+void add_verify_command(CLI::App& app, int& exit_code) {
+  auto* verify_cmd = app.add_subcommand("verify", "Check a bundle against ground truth");
+  verify_cmd->require_subcommand(1);
+  auto args = std::make_shared<VerifyArgs>();
+  auto* cmd = verify_cmd->add_subcommand(
+      "visibility", "PVS vs polygon-ID cube images from random viewpoints per cell; exit 2 on missed pixels");
+  cmd->add_option("bundle", args->bundle, "Bundle to verify")->required();
+  cmd->add_option("--viewpoints", args->options.viewpoints, "Random viewpoints per cell")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--resolution", args->options.resolution, "Cube face size in pixels")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--dense", args->options.dense, "Dense viewpoints per axis per cell (n^3)")
+      ->check(CLI::Range(0, 16));
+  cmd->add_option("--dense-resolution", args->options.dense_resolution, "Cube face size for dense viewpoints")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--ray-caster", args->options.ray_caster, "Ray caster for the ID images");
+  cmd->add_option("--threads", args->options.threads, "Threads (0: all cores)");
+  cmd->add_option("--sweep", args->sweep, "Sweep PVS methods and sample counts; write CSV here");
+  cmd->add_flag("-q,--quiet", args->quiet, "No per-cell lines");
+  cmd->callback([args, &exit_code] { exit_code = verify(*args); });
+}
+
+}  // namespace walk::tools
