@@ -8,6 +8,7 @@ namespace walk::tools {
 void add_compile_command(CLI::App& app, int& exit_code);
 void add_inspect_command(CLI::App& app, int& exit_code);
 void add_render_command(CLI::App& app, int& exit_code);
+void add_verify_command(CLI::App& app, int& exit_code);
 
 // `walk bench ...`: accuracy/time sweeps printing CSV; each registers under the `bench` subcommand.
 void add_bench_radiosity_command(CLI::App& bench, int& exit_code);
