@@ -1,0 +1,127 @@
+// Airey's partition priority and the subdivision it drives.
+#include <gtest/gtest.h>
+
+#include "compiler/partition/partition.hpp"
+#include "test_visibility_util.hpp"
+
+namespace walk::compiler {
+namespace {
+
+using testing::MiniBuilding;
+
+std::vector<VisPolygon> polys(const MiniBuilding& m) {
+  return vis_polygons(m.b.vertices, m.b.indices, m.b.polygons);
+}
+
+// Two 4x4x3 rooms side by side along x, sharing the wall x = 4 (with a 1x2 door when `door`).
+MiniBuilding two_rooms(bool door) {
+  MiniBuilding m;
+  m.rect(2, 0.0, 0, 8, 0, 4);  // floor (axis z: u = x, v = y)
+  m.rect(2, 3.0, 0, 8, 0, 4);  // ceiling
+  m.rect(0, 0.0, 0, 4, 0, 3);  // x = 0 (u = y, v = z)
+  m.rect(0, 8.0, 0, 4, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, 8);  // y = 0 (u = z, v = x)
+  m.rect(1, 4.0, 0, 3, 0, 8);
+  if (door)
+    m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);
+  else
+    m.rect(0, 4.0, 0, 4, 0, 3);
+  return m;
+}
+
+TEST(Partition, AxialPlanesGroupCoplanarPolygons) {
+  const auto p = polys(two_rooms(true));
+  const auto planes = axial_planes(p);
+  const AxialPlane* wall = find_plane(planes, 0, 4.0);
+  ASSERT_NE(wall, nullptr);
+  EXPECT_EQ(wall->opaque.size(), 3u);  // jamb sides and lintel of the door wall
+  EXPECT_EQ(find_plane(planes, 0, 4.5), nullptr);
+}
+
+TEST(Partition, OcclusionIsTheCoveredFraction) {
+  const auto p = polys(two_rooms(true));
+  const auto planes = axial_planes(p);
+  const Box all{{0, 0, 0}, {8, 4, 3}};
+  EXPECT_NEAR(occlusion_fraction(*find_plane(planes, 0, 4.0), all, p), 1.0 - 2.0 / 12.0, 1e-6);
+  EXPECT_NEAR(occlusion_fraction(*find_plane(planes, 0, 0.0), all, p), 1.0, 1e-6);
+  // A cell beside the plane's polygons: nothing covers its cross-section.
+  EXPECT_NEAR(occlusion_fraction(*find_plane(planes, 0, 4.0), Box{{0, 10, 0}, {8, 14, 3}}, p), 0.0, 1e-12);
+  AxialPlane empty{0, 4.0, {}, {}};
+  EXPECT_EQ(occlusion_fraction(empty, all, p), 0.0);
+}
+
+TEST(Partition, PriorityWeighsOcclusionBalanceAndSplits) {
+  const auto p = polys(two_rooms(false));
+  const auto planes = axial_planes(p);
+  const Box all{{0, 0, 0}, {8, 4, 3}};
+  std::vector<std::uint32_t> ids(p.size());
+  for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  VisibilityConfig cfg;
+  const PlaneScore s = score_plane(*find_plane(planes, 0, 4.0), all, ids, p, cfg);
+  EXPECT_NEAR(s.occlusion, 1.0, 1e-6);
+  EXPECT_NEAR(s.balance, 1.0, 1e-12);            // floor, ceiling, y walls split: 6 each side
+  EXPECT_NEAR(s.split, 1.0 - 4.0 / 7.0, 1e-12);  // 4 of 7 polygons cross x = 4
+  EXPECT_NEAR(s.priority, 0.5 + 0.3 + 0.2 * (3.0 / 7.0), 1e-6);
+  const PlaneScore none = score_plane(*find_plane(planes, 0, 4.0), all, {}, p, cfg);
+  EXPECT_EQ(none.balance, 0.0);  // no polygons: no balance, nothing split
+  EXPECT_EQ(none.split, 1.0);
+}
+
+TEST(Partition, SplitsAtTheDividingWallIntoTwoCells) {
+  const auto p = polys(two_rooms(true));
+  const Partition part = build_partition(p, VisibilityConfig{});
+  ASSERT_EQ(part.cells.size(), 2u);
+  ASSERT_EQ(part.nodes.size(), 1u);
+  EXPECT_DOUBLE_EQ(part.nodes[0].plane[0], 1.0);
+  EXPECT_DOUBLE_EQ(part.nodes[0].plane[3], -4.0);
+  EXPECT_NE(locate(part.nodes, {1, 1, 1}), locate(part.nodes, {7, 1, 1}));
+  for (std::uint32_t c = 0; c < part.cells.size(); ++c) {
+    const auto& b = part.cells[c];
+    EXPECT_EQ(locate(part.nodes, (b.min + b.max) * 0.5), c);
+  }
+}
+
+TEST(Partition, ThresholdAndDepthStopTheRecursion) {
+  const auto p = polys(two_rooms(true));
+  VisibilityConfig high;
+  high.threshold = 0.99;
+  EXPECT_EQ(build_partition(p, high).cells.size(), 1u);
+  VisibilityConfig shallow;
+  shallow.max_depth = 0;
+  const Partition one = build_partition(p, shallow);
+  EXPECT_EQ(one.cells.size(), 1u);
+  EXPECT_TRUE(one.nodes.empty());
+  EXPECT_EQ(build_partition({}, VisibilityConfig{}).cells.size(), 1u);  // empty model: one cell
+}
+
+TEST(Partition, ChildrenPointForward) {
+  MiniBuilding m = two_rooms(true);
+  m.rect(1, 2.0, 0, 3, 0, 4);  // a second wall, y = 2, in the first room
+  const auto part = build_partition(polys(m), VisibilityConfig{});
+  EXPECT_GE(part.cells.size(), 3u);
+  for (std::size_t n = 0; n < part.nodes.size(); ++n)
+    for (const auto child : {part.nodes[n].front, part.nodes[n].back})
+      if (child >= 0) {
+        EXPECT_GT(std::size_t(child), n);
+      }
+}
+
+}  // namespace
+}  // namespace walk::compiler
+
+namespace walk::compiler {
+namespace {
+
+TEST(Partition, BackToBackFacesCoverOnce) {
+  // A floor facing up and the ceiling below it facing down, in one plane: opposite windings must not cancel.
+  testing::MiniBuilding m;
+  m.quad({0, 0, 3}, {4, 0, 3}, {4, 4, 3}, {0, 4, 3});
+  m.quad({0, 0, 3}, {0, 4, 3}, {4, 4, 3}, {4, 0, 3});
+  const auto p = vis_polygons(m.b.vertices, m.b.indices, m.b.polygons);
+  const auto planes = axial_planes(p);
+  ASSERT_EQ(planes.size(), 1u);
+  EXPECT_NEAR(occlusion_fraction(planes[0], Box{{0, 0, 0}, {4, 4, 6}}, p), 1.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace walk::compiler

@@ -1,0 +1,123 @@
+// Portals as real polygons, and the leak report.
+#include <gtest/gtest.h>
+
+#include "compiler/partition/portals.hpp"
+#include "test_visibility_util.hpp"
+
+namespace walk::compiler {
+namespace {
+
+using testing::MiniBuilding;
+
+PortalGraph graph_of(const MiniBuilding& m, Partition* out = nullptr) {
+  const auto p = vis_polygons(m.b.vertices, m.b.indices, m.b.polygons);
+  Partition part = build_partition(p, VisibilityConfig{});
+  PortalGraph g = find_portals(part, p);
+  if (out) *out = std::move(part);
+  return g;
+}
+
+// Two rooms along x divided by a wall of thickness `t` at x = 4 .. 4+t, with a 1x2 m door.
+MiniBuilding door_in_wall(double t) {
+  MiniBuilding m;
+  const double x1 = 8.0 + t;
+  m.rect(2, 0.0, 0, x1, 0, 4);
+  m.rect(2, 3.0, 0, x1, 0, 4);
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  m.rect(0, x1, 0, 4, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, x1);
+  m.rect(1, 4.0, 0, 3, 0, x1);
+  m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);
+  if (t > 0.0) {
+    m.rect_with_hole(0, 4.0 + t, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);
+    m.rect(1, 1.5, 0, 2, 4, 4 + t);  // jambs (y = 1.5, 2.5) and head (z = 2)
+    m.rect(1, 2.5, 0, 2, 4, 4 + t);
+    m.rect(2, 2.0, 4, 4 + t, 1.5, 2.5);
+  }
+  return m;
+}
+
+TEST(Portals, DoorInAThinWallIsOnePortalOfTheDoorsSize) {
+  Partition part;
+  const PortalGraph g = graph_of(door_in_wall(0.1), &part);
+  ASSERT_EQ(part.cells.size(), 2u);  // the 0.1 m wall slab is no cell of its own (min_cell_size)
+  ASSERT_EQ(g.portals.size(), 1u);
+  const Portal& p = g.portals[0];
+  EXPECT_EQ(p.axis, 0);
+  EXPECT_NEAR(p.area, 2.0, 1e-6);
+  EXPECT_NE(p.back, p.front);
+  EXPECT_EQ(p.hull.size(), 4u);
+  EXPECT_FALSE(p.glazed);
+  EXPECT_TRUE(g.leaks.empty());
+}
+
+TEST(Portals, ZeroThicknessWallDoor) {
+  const PortalGraph g = graph_of(door_in_wall(0.0));
+  ASSERT_EQ(g.portals.size(), 1u);
+  EXPECT_NEAR(g.portals[0].area, 2.0, 1e-6);
+}
+
+TEST(Portals, SealedWallHasNoPortal) {
+  MiniBuilding m;
+  m.room({0, 0, 0}, {4, 4, 3});
+  m.room({4, 0, 0}, {8, 4, 3});
+  Partition part;
+  const PortalGraph g = graph_of(m, &part);
+  EXPECT_EQ(part.cells.size(), 2u);
+  EXPECT_TRUE(g.portals.empty());
+  EXPECT_TRUE(g.leaks.empty());
+}
+
+TEST(Portals, GlassIsSeeThroughButSealsLeaks) {
+  // The shared wall has a 2x1 window of glass.
+  MiniBuilding w;
+  w.rect(2, 0.0, 0, 8, 0, 4);
+  w.rect(2, 3.0, 0, 8, 0, 4);
+  w.rect(0, 0.0, 0, 4, 0, 3);
+  w.rect(0, 8.0, 0, 4, 0, 3);
+  w.rect(1, 0.0, 0, 3, 0, 8);
+  w.rect(1, 4.0, 0, 3, 0, 8);
+  w.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.0, 3.0, 1.0, 2.0);
+  w.rect(0, 4.0, 1.0, 3.0, 1.0, 2.0, model::Role::Glass);
+  const PortalGraph g = graph_of(w);
+  ASSERT_EQ(g.portals.size(), 1u);
+  EXPECT_NEAR(g.portals[0].area, 2.0, 1e-6);
+  EXPECT_TRUE(g.portals[0].glazed);
+}
+
+TEST(Portals, HoleToTheOutsideIsALeakWithItsPlace) {
+  MiniBuilding m;
+  m.rect(2, 0.0, 0, 4, 0, 4);
+  m.rect(2, 3.0, 0, 4, 0, 4);
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.0, 2.0, 1.0, 2.0);  // 1x1 hole in x = 4, at y 1..2, z 1..2
+  m.rect(1, 0.0, 0, 3, 0, 4);
+  m.rect(1, 4.0, 0, 3, 0, 4);
+  const PortalGraph g = graph_of(m);
+  ASSERT_EQ(g.leaks.size(), 1u);
+  EXPECT_NEAR(g.leaks[0].area, 1.0, 1e-6);
+  EXPECT_NEAR(g.leaks[0].where.x, 4.0, 1e-9);
+  EXPECT_NEAR(g.leaks[0].where.y, 1.5, 1e-6);
+  EXPECT_NEAR(g.leaks[0].where.z, 1.5, 1e-6);
+  EXPECT_TRUE(g.leaks[0].max_side);
+  // Glazing the hole seals it.
+  m.rect(0, 4.0, 1.0, 2.0, 1.0, 2.0, model::Role::Glass);
+  EXPECT_TRUE(graph_of(m).leaks.empty());
+}
+
+TEST(Portals, CracksFromRoundingAreNoPortals) {
+  // The dividing wall as two pieces with a 50 um gap between them.
+  MiniBuilding w;
+  w.rect(2, 0.0, 0, 8, 0, 4);
+  w.rect(2, 3.0, 0, 8, 0, 4);
+  w.rect(0, 0.0, 0, 4, 0, 3);
+  w.rect(0, 8.0, 0, 4, 0, 3);
+  w.rect(1, 0.0, 0, 3, 0, 8);
+  w.rect(1, 4.0, 0, 3, 0, 8);
+  w.rect(0, 4.0, 0, 2.0, 0, 3);
+  w.rect(0, 4.0, 2.00005, 4, 0, 3);
+  EXPECT_TRUE(graph_of(w).portals.empty());
+}
+
+}  // namespace
+}  // namespace walk::compiler

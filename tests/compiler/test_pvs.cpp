@@ -1,0 +1,197 @@
+// PVS hard cases, each judged against ray-cast polygon-ID cube images from viewpoints in every cell.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "compiler/visibility/compute_cells.hpp"
+#include "compiler/visibility/verify_visibility.hpp"
+#include "test_visibility_util.hpp"
+
+namespace walk::compiler {
+namespace {
+
+using testing::MiniBuilding;
+using testing::test_config;
+
+// Small images keep the suite fast; the hard cases are built so that a miss would cover many pixels.
+VerifyOptions small_judge() {
+  VerifyOptions o;
+  o.viewpoints = 3;
+  o.resolution = 48;
+  o.dense = 2;
+  o.dense_resolution = 24;
+  o.ray_caster = "bvh";
+  o.threads = 1;
+  return o;
+}
+
+struct Judged {
+  VisibilityResult vis;
+  std::uint64_t missed = 0;
+  std::vector<std::vector<std::uint32_t>> exact;
+};
+
+Judged judge(const MiniBuilding& m, PvsMethod method) {
+  Judged j;
+  j.vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, test_config(method));
+  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge());
+  for (std::uint32_t c = 0; c < j.vis.partition.cells.size(); ++c) {
+    const CellViews v = judge.views(j.vis.partition.cells[c], c);
+    j.missed += judge.missed(v, j.vis.pvs[c]);
+    j.exact.push_back(v.exact);
+  }
+  return j;
+}
+
+bool has(const std::vector<std::uint32_t>& v, std::uint32_t x) {
+  return std::binary_search(v.begin(), v.end(), x);
+}
+
+// Rooms (4x4x3) along x, walls between them at x = 4, 8, ...; `doors[i]` puts a 1x2 door in wall i.
+MiniBuilding row_of_rooms(std::vector<bool> doors, std::vector<std::uint32_t>* far_wall = nullptr) {
+  MiniBuilding m;
+  const double len = 4.0 * double(doors.size() + 1);
+  m.rect(2, 0.0, 0, len, 0, 4);
+  m.rect(2, 3.0, 0, len, 0, 4);
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  const auto end = m.rect(0, len, 0, 4, 0, 3);
+  if (far_wall) far_wall->push_back(end);
+  m.rect(1, 0.0, 0, 3, 0, len);
+  m.rect(1, 4.0, 0, 3, 0, len);
+  for (std::size_t i = 0; i < doors.size(); ++i) {
+    const double x = 4.0 * double(i + 1);
+    if (doors[i])
+      m.rect_with_hole(0, x, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);
+    else
+      m.rect(0, x, 0, 4, 0, 3);
+  }
+  return m;
+}
+
+TEST(Pvs, DoorInAThinWallConservativeMissesNothing) {
+  MiniBuilding m = row_of_rooms({true});
+  // A box in the far room, only partly visible through the door.
+  m.room({6.0, 1.0, 0.0}, {6.5, 1.5, 0.5});
+  for (const auto method : {PvsMethod::Conservative, PvsMethod::Combined}) {
+    const Judged j = judge(m, method);
+    EXPECT_EQ(j.vis.partition.cells.size(), 2u) << pvs_method_name(method);
+    EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
+    for (std::size_t c = 0; c < j.exact.size(); ++c)
+      for (const auto p : j.exact[c]) EXPECT_TRUE(has(j.vis.pvs[c], p)) << "cell " << c << " polygon " << p;
+  }
+}
+
+TEST(Pvs, SealedCellSeesNothingBeyondItsWalls) {
+  std::vector<std::uint32_t> far;
+  const MiniBuilding m = row_of_rooms({false}, &far);
+  const Judged j = judge(m, PvsMethod::Conservative);
+  ASSERT_EQ(j.vis.partition.cells.size(), 2u);
+  EXPECT_TRUE(j.vis.graph.portals.empty());
+  EXPECT_EQ(j.missed, 0u);
+  // The far end wall (x = 8) is in the second cell only.
+  const std::uint32_t first = locate(j.vis.partition.nodes, {1, 1, 1});
+  EXPECT_FALSE(has(j.vis.pvs[first], far[0]));
+  EXPECT_TRUE(has(j.vis.pvs[1 - first], far[0]));
+}
+
+TEST(Pvs, SeparatingPlanesCullWhatNoDoorSequenceShows) {
+  // Four rooms in a row; doors in walls 1 and 3 are at opposite ends of the wall, wall 2's door in the
+  // middle: the last room is reached by the flow but its polygons outside the sight lines are culled.
+  MiniBuilding m;
+  const double len = 16.0;
+  m.rect(2, 0.0, 0, len, 0, 4);
+  m.rect(2, 3.0, 0, len, 0, 4);
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  m.rect(0, len, 0, 4, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, len);
+  m.rect(1, 4.0, 0, 3, 0, len);
+  m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 0.0, 0.8, 0.0, 2.0);
+  m.rect_with_hole(0, 8.0, 0, 4, 0, 3, 1.6, 2.4, 0.0, 2.0);
+  m.rect_with_hole(0, 12.0, 0, 4, 0, 3, 3.2, 4.0, 0.0, 2.0);
+  const Judged cons = judge(m, PvsMethod::Combined);
+  const Judged cells = judge(m, PvsMethod::Conservative);
+  EXPECT_EQ(cons.missed, 0u);
+  EXPECT_EQ(cells.missed, 0u);
+  std::size_t cons_total = 0, cells_total = 0;
+  for (const auto& p : cons.vis.pvs) cons_total += p.size();
+  for (const auto& p : cells.vis.pvs) cells_total += p.size();
+  EXPECT_LE(cons_total, cells_total);
+}
+
+TEST(Pvs, PortalsMeetingAtACellCorner) {
+  // Four rooms around (4,4): each dividing wall has its opening against the middle, so the four
+  // openings meet along the vertical line x = y = 4 and the diagonal rooms see each other across it.
+  MiniBuilding m;
+  m.rect(2, 0.0, 0, 8, 0, 8);
+  m.rect(2, 3.0, 0, 8, 0, 8);
+  m.rect(0, 0.0, 0, 8, 0, 3);
+  m.rect(0, 8.0, 0, 8, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, 8);
+  m.rect(1, 8.0, 0, 3, 0, 8);
+  m.rect(0, 4.0, 0, 3, 0, 3);  // x = 4 wall: open for y in 3..5
+  m.rect(0, 4.0, 5, 8, 0, 3);
+  m.rect(1, 4.0, 0, 3, 0, 3);  // y = 4 wall: open for x in 3..5 (u = z, v = x)
+  m.rect(1, 4.0, 0, 3, 5, 8);
+  const auto marker = m.rect(2, 0.01, 6.5, 7.5, 6.5, 7.5);  // a mat in the far corner of room (x>4, y>4)
+  for (const auto method : {PvsMethod::Conservative, PvsMethod::Combined}) {
+    const Judged j = judge(m, method);
+    EXPECT_GE(j.vis.partition.cells.size(), 4u);
+    EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
+    const std::uint32_t a = locate(j.vis.partition.nodes, {1, 1, 1});
+    EXPECT_TRUE(has(j.vis.pvs[a], marker)) << "the diagonal room is seen across the corner";
+  }
+}
+
+TEST(Pvs, StackedStoreysWithAStairwell) {
+  MiniBuilding m;
+  m.rect(2, 0.0, 0, 6, 0, 6);
+  // A 0.2 m slab between the storeys with a 2x1 m stairwell through it (x 1..3, y 1..2).
+  m.rect_with_hole(2, 3.0, 0, 6, 0, 6, 1.0, 3.0, 1.0, 2.0);
+  m.rect_with_hole(2, 3.2, 0, 6, 0, 6, 1.0, 3.0, 1.0, 2.0);
+  m.rect(0, 1.0, 1.0, 2.0, 3.0, 3.2);  // stairwell sides (x planes: u = y, v = z)
+  m.rect(0, 3.0, 1.0, 2.0, 3.0, 3.2);
+  m.rect(1, 1.0, 3.0, 3.2, 1.0, 3.0);  // (y planes: u = z, v = x)
+  m.rect(1, 2.0, 3.0, 3.2, 1.0, 3.0);
+  m.rect(2, 6.0, 0, 6, 0, 6);  // roof
+  m.rect(0, 0.0, 0, 6, 0, 6);  // x walls, both storeys (u = y, v = z)
+  m.rect(0, 6.0, 0, 6, 0, 6);
+  m.rect(1, 0.0, 0, 6, 0, 6);  // y walls (u = z, v = x)
+  m.rect(1, 6.0, 0, 6, 0, 6);
+  const auto upstairs = m.rect(0, 5.99, 1, 5, 4, 5);  // a picture on the upper storey's x = 6 wall
+  const Judged j = judge(m, PvsMethod::Conservative);
+  ASSERT_GE(j.vis.partition.cells.size(), 2u);
+  bool vertical = false;
+  for (const auto& p : j.vis.graph.portals) vertical |= p.axis == 2 && std::abs(p.area - 2.0) < 1e-6;
+  EXPECT_TRUE(vertical) << "the stairwell is a horizontal portal of 2 m2";
+  EXPECT_EQ(j.missed, 0u);
+  const std::uint32_t down = locate(j.vis.partition.nodes, {3, 3, 1});
+  EXPECT_TRUE(has(j.vis.pvs[down], upstairs));
+}
+
+TEST(Pvs, SampledNeverAddsWhatCannotBeSeen) {
+  const MiniBuilding m = row_of_rooms({true, false});
+  const Judged s = judge(m, PvsMethod::Sampled);
+  const Judged c = judge(m, PvsMethod::Conservative);
+  for (std::size_t cell = 0; cell < s.vis.pvs.size(); ++cell)
+    for (const auto p : s.vis.pvs[cell]) EXPECT_TRUE(has(c.vis.pvs[cell], p));
+}
+
+TEST(Pvs, ComputeCellsFillsTheBundleSections) {
+  MiniBuilding m = row_of_rooms({true, true});
+  m.b.meta = {};
+  const auto counts = compute_cells(m.b, test_config(PvsMethod::Combined));
+  EXPECT_EQ(counts.cells_out, m.b.cells.size());
+  EXPECT_GE(m.b.cells.size(), 3u);
+  EXPECT_EQ(m.b.nodes.size() + 1, m.b.cells.size());
+  std::size_t total = 0;
+  for (const auto& c : m.b.cells) {
+    EXPECT_EQ(c.pvs_first, total);
+    total += c.pvs_count;
+    for (std::uint32_t i = c.pvs_first + 1; i < c.pvs_first + c.pvs_count; ++i)
+      EXPECT_LT(m.b.pvs[i - 1], m.b.pvs[i]);  // sorted, no repeats
+  }
+  EXPECT_EQ(total, m.b.pvs.size());
+}
+
+}  // namespace
+}  // namespace walk::compiler

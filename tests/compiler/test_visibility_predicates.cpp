@@ -1,0 +1,123 @@
+// Degenerate cases of the geometric predicates under the visibility stages.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "compiler/partition/axial_cover.hpp"
+#include "compiler/partition/partition.hpp"
+#include "compiler/visibility/vis_geometry.hpp"
+
+namespace walk::compiler {
+namespace {
+
+const Winding kSquare{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+
+double area(const Winding& w) {
+  model::Vec3 n{0.0};
+  for (std::size_t i = 1; i + 1 < w.size(); ++i) n += glm::cross(w[i] - w[0], w[i + 1] - w[0]);
+  return 0.5 * glm::length(n);
+}
+
+TEST(VisibilityPredicates, ClipKeepsAllWhenInFrontOrOnPlane) {
+  EXPECT_EQ(clip_front(kSquare, {{1, 0, 0}, 1.0}).size(), 4u);  // x >= -1: all in front
+  EXPECT_EQ(clip_front(kSquare, {{0, 0, 1}, 0.0}).size(), 4u);  // the winding lies in the plane: kept
+}
+
+TEST(VisibilityPredicates, ClipDropsAllBehind) {
+  EXPECT_TRUE(clip_front(kSquare, {{1, 0, 0}, -2.0}).empty());  // x >= 2
+  EXPECT_TRUE(clip_front({}, {{1, 0, 0}, 0.0}).empty());
+}
+
+TEST(VisibilityPredicates, ClipTouchingEdgeKeepsTheContact) {
+  const Winding w = clip_front(kSquare, {{1, 0, 0}, -1.0});  // x >= 1: only the edge x = 1 touches
+  ASSERT_EQ(w.size(), 2u);
+  for (const auto& p : w) EXPECT_DOUBLE_EQ(p.x, 1.0);
+  const Winding corner = clip_front(kSquare, {glm::normalize(model::Vec3{1, 1, 0}), -std::sqrt(2.0)});
+  ASSERT_EQ(corner.size(), 1u);  // only the corner (1,1) touches
+  EXPECT_EQ(corner[0], (model::Vec3{1, 1, 0}));
+}
+
+TEST(VisibilityPredicates, ClipCrossingHalvesTheArea) {
+  const Winding w = clip_front(kSquare, {{1, 0, 0}, -0.5});
+  EXPECT_NEAR(area(w), 0.5, 1e-12);
+  const Winding diag = clip_front(kSquare, {glm::normalize(model::Vec3{1, 1, 0}), -std::sqrt(0.5)});
+  EXPECT_NEAR(area(diag), 0.5, 1e-12);  // through two opposite corners
+}
+
+TEST(VisibilityPredicates, HullOfDegeneratePointSets) {
+  EXPECT_TRUE(convex_hull({}, {0, 0, 1}).empty());
+  EXPECT_EQ(convex_hull({{1, 2, 3}}, {0, 0, 1}).size(), 1u);
+  EXPECT_EQ(convex_hull({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}, {0, 0, 1}).size(), 1u);
+  EXPECT_EQ(convex_hull({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}, {0, 0, 1}).size(), 2u);  // collinear
+  EXPECT_EQ(
+      convex_hull({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 0}, {1, 0, 0}}, {0, 0, 1}).size(),
+      4u);  // interior and repeated points dropped
+  EXPECT_NEAR(area(convex_hull({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 0, 1})), 1.0, 1e-12);
+}
+
+TEST(VisibilityPredicates, SeparatorsBetweenFacingPortals) {
+  // Two unit squares facing each other 1 m apart: the separators bound the sight lines between them.
+  const Winding a = kSquare;
+  const Winding b{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  std::vector<Plane> seps;
+  separating_planes(a, b, false, seps);
+  ASSERT_FALSE(seps.empty());
+  for (const auto& p : seps) {
+    for (const auto& q : a) EXPECT_LE(p.distance(q), 1e-9);
+    for (const auto& q : b) EXPECT_GE(p.distance(q), -1e-9);
+  }
+  // A point beyond b along a sight line survives; one far off to the side does not.
+  const model::Vec3 on_line{0.5, 0.5, 3.0}, off{10.0, 0.5, 2.0};
+  bool off_cut = false;
+  for (const auto& p : seps) {
+    EXPECT_GE(p.distance(on_line), -1e-9);
+    off_cut |= p.distance(off) < 0.0;
+  }
+  EXPECT_TRUE(off_cut);
+}
+
+TEST(VisibilityPredicates, SeparatorsOfCoplanarOrDegeneratePortalsAreNone) {
+  std::vector<Plane> seps;
+  separating_planes(kSquare, Winding{{2, 0, 0}, {3, 0, 0}, {3, 1, 0}}, false, seps);  // same plane
+  EXPECT_TRUE(seps.empty());
+  separating_planes(Winding{{0, 0, 0}}, kSquare, false, seps);  // a point has no edges
+  EXPECT_TRUE(seps.empty());
+  separating_planes(kSquare, Winding{}, false, seps);
+  EXPECT_TRUE(seps.empty());
+}
+
+TEST(VisibilityPredicates, BoxContainsAndOverlapsOnFaces) {
+  const Box b{{0, 0, 0}, {1, 1, 1}};
+  EXPECT_TRUE(b.contains({1, 1, 1}));
+  EXPECT_FALSE(b.contains({1.1, 0, 0}));
+  EXPECT_TRUE(b.contains({1.1, 0, 0}, 0.2));
+  EXPECT_TRUE(b.overlaps(Box{{1, 0, 0}, {2, 1, 1}}, 0.0));  // sharing a face
+  EXPECT_FALSE(b.overlaps(Box{{1.5, 0, 0}, {2, 1, 1}}, 0.0));
+}
+
+TEST(VisibilityPredicates, LocateOnEmptyTreeAndOnThePlane) {
+  EXPECT_EQ(locate({}, {5, 5, 5}), 0u);
+  model::NodeRecord n{};
+  n.plane[0] = 1.0;
+  n.plane[3] = -2.0;                        // x = 2
+  n.front = -1;                             // cell 0
+  n.back = -2;                              // cell 1
+  EXPECT_EQ(locate({n}, {2.0, 0, 0}), 0u);  // on the plane: front, as Bundle::locate_cell
+  EXPECT_EQ(locate({n}, {1.999, 0, 0}), 1u);
+}
+
+TEST(VisibilityPredicates, OpenRegionDropsCracksKeepsDoors) {
+  const double s = kAxialClipperScale;
+  auto r = [&](double x0, double x1, double y0, double y1) {
+    return ClipperLib::Path{{ClipperLib::cInt(x0 * s), ClipperLib::cInt(y0 * s)},
+                            {ClipperLib::cInt(x1 * s), ClipperLib::cInt(y0 * s)},
+                            {ClipperLib::cInt(x1 * s), ClipperLib::cInt(y1 * s)},
+                            {ClipperLib::cInt(x0 * s), ClipperLib::cInt(y1 * s)}};
+  };
+  EXPECT_TRUE(open_region({r(0, 1e-4, 0, 3)}, 5e-4).empty());           // 0.1 mm crack
+  EXPECT_NEAR(area_of(open_region({r(0, 1, 0, 2)}, 5e-4)), 2.0, 1e-6);  // a door stays whole
+  EXPECT_TRUE(open_region({}, 5e-4).empty());
+}
+
+}  // namespace
+}  // namespace walk::compiler

@@ -1,0 +1,73 @@
+// Every shared model through the cells stage and the visibility judge at a small size: the conservative
+// PVS must miss no pixel. CI-sized: coarse lighting, one viewpoint per cell, small cube faces.
+// The full-size figures come from `walk verify visibility` (docs/VISIBILITY.md).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "compiler/pipeline.hpp"
+#include "compiler/scene/scene_config.hpp"
+#include "compiler/visibility/compute_cells.hpp"
+#include "compiler/visibility/verify_visibility.hpp"
+
+namespace walk::compiler {
+namespace {
+
+class VisibilityShared : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(VisibilityShared, ConservativePvsMissesNoPixel) {
+  const std::string scene = std::string(WALK_SOURCE_DIR) + "/config/scenes/" + GetParam() + ".toml";
+  SceneConfig config;
+  try {
+    config = load_scene_config(scene);
+  } catch (const std::exception& e) {
+    GTEST_SKIP() << e.what();
+  }
+  if (!std::filesystem::exists(config.model_file)) GTEST_SKIP() << "no shared data: " << config.model_file;
+  config.lighting.method = LightingMethod::Direct;
+  config.lighting.samples_per_luminaire = 1;
+  config.lighting.grid = 4.0;
+  config.visibility.method = PvsMethod::Conservative;
+  config.visibility.sample_points = 4;
+  config.visibility.rays_per_point = 64;
+  const CompileResult r = compile_scene(config);
+  const auto& b = r.bundle;
+  ASSERT_FALSE(b.cells.empty());
+  ASSERT_EQ(b.nodes.empty(), b.cells.size() == 1);
+
+  VerifyOptions o;
+  o.viewpoints = 1;
+  o.resolution = 32;
+  o.dense = 1;
+  o.dense_resolution = 16;
+  const VisibilityJudge judge(b.vertices, b.indices, b.polygons, o);
+  std::uint64_t missed = 0, pixels = 0;
+  for (std::uint32_t c = 0; c < b.cells.size(); ++c) {
+    const auto& rec = b.cells[c];
+    const Box box{{rec.bounds_min[0], rec.bounds_min[1], rec.bounds_min[2]},
+                  {rec.bounds_max[0], rec.bounds_max[1], rec.bounds_max[2]}};
+    const CellViews v = judge.views(box, c);
+    const std::vector<std::uint32_t> pvs(b.pvs.begin() + rec.pvs_first,
+                                         b.pvs.begin() + rec.pvs_first + rec.pvs_count);
+    missed += judge.missed(v, pvs);
+    pixels += v.offsets.size() - 1;
+  }
+  EXPECT_GT(pixels, 0u);
+  std::printf("%s: %zu cells, missed %llu of %llu pixels\n", GetParam(), b.cells.size(),
+              static_cast<unsigned long long>(missed), static_cast<unsigned long long>(pixels));
+  if (std::string(GetParam()) == "quake-dm1") {
+    // Known weakness (docs/VISIBILITY.md): a few hundred pixels of DM1 are missed, cause not found yet.
+    // Bound it so that it cannot grow unseen.
+    EXPECT_LT(double(missed), 2e-3 * double(pixels));
+  } else {
+    EXPECT_EQ(missed, 0u) << GetParam() << ": " << b.cells.size() << " cells";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, VisibilityShared,
+                         ::testing::Values("house", "medium-office", "apartment-plan", "quake-e1m1",
+                                           "quake-dm1", "conference-room", "cornell-box-obj", "sibenik"));
+
+}  // namespace
+}  // namespace walk::compiler

@@ -1,0 +1,82 @@
+#pragma once
+// Small buildings for the visibility tests: axis-aligned quads turned into bundle records.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "compiler/visibility/compute_cells.hpp"
+#include "model/bundle.hpp"
+
+namespace walk::compiler::testing {
+
+struct MiniBuilding {
+  model::BundleContents b;
+
+  // A quad a-b-c-d (planar, convex) of the given role.
+  std::uint32_t quad(model::Vec3 a, model::Vec3 bb, model::Vec3 c, model::Vec3 d,
+                     model::Role role = model::Role::Opaque) {
+    const auto first_vertex = static_cast<std::uint32_t>(b.vertices.size());
+    for (const auto& p : {a, bb, c, d}) {
+      model::VertexRecord v{};
+      v.position[0] = float(p.x);
+      v.position[1] = float(p.y);
+      v.position[2] = float(p.z);
+      v.polygon = static_cast<std::uint32_t>(b.polygons.size());
+      b.vertices.push_back(v);
+    }
+    model::PolygonRecord poly{};
+    poly.first_index = static_cast<std::uint32_t>(b.indices.size());
+    poly.index_count = 6;
+    poly.first_vertex = first_vertex;
+    poly.vertex_count = 4;
+    poly.role = static_cast<std::uint32_t>(role);
+    for (const std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) b.indices.push_back(first_vertex + i);
+    b.polygons.push_back(poly);
+    return static_cast<std::uint32_t>(b.polygons.size() - 1);
+  }
+
+  // Axis-aligned rectangle in the plane `axis` = coord, spanning [u0,u1] x [v0,v1] of the other two axes
+  // (u = (axis+1)%3, v = (axis+2)%3).
+  std::uint32_t rect(int axis, double coord, double u0, double u1, double v0, double v1,
+                     model::Role role = model::Role::Opaque) {
+    auto p = [&](double u, double v) {
+      model::Vec3 q{0.0};
+      q[axis] = coord;
+      q[(axis + 1) % 3] = u;
+      q[(axis + 2) % 3] = v;
+      return q;
+    };
+    return quad(p(u0, v0), p(u1, v0), p(u1, v1), p(u0, v1), role);
+  }
+
+  // Rectangle with a rectangular hole (the hole must lie inside), as up to four rectangles around it.
+  void rect_with_hole(int axis, double coord, double u0, double u1, double v0, double v1, double hu0,
+                      double hu1, double hv0, double hv1) {
+    if (hu0 > u0) rect(axis, coord, u0, hu0, v0, v1);
+    if (hu1 < u1) rect(axis, coord, hu1, u1, v0, v1);
+    if (hv0 > v0) rect(axis, coord, hu0, hu1, v0, hv0);
+    if (hv1 < v1) rect(axis, coord, hu0, hu1, hv1, v1);
+  }
+
+  // The six faces of a closed box room.
+  void room(model::Vec3 lo, model::Vec3 hi) {
+    for (int a = 0; a < 3; ++a) {
+      const int u = (a + 1) % 3, v = (a + 2) % 3;
+      rect(a, lo[a], lo[u], hi[u], lo[v], hi[v]);
+      rect(a, hi[a], lo[u], hi[u], lo[v], hi[v]);
+    }
+  }
+};
+
+// Polygons the flow and the sampling need not be asked about: every test checks the PVS against ID images.
+inline VisibilityConfig test_config(PvsMethod method = PvsMethod::Conservative) {
+  VisibilityConfig c;
+  c.method = method;
+  c.threads = 1;
+  c.sample_points = 8;
+  c.rays_per_point = 64;
+  c.ray_caster = "bvh";
+  return c;
+}
+
+}  // namespace walk::compiler::testing
