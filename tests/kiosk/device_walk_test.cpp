@@ -303,6 +303,8 @@ TEST(HouseModbusWalk, WalksThroughTheDoorAndAPanelRegisterBrightensThatRoom) {
   ASSERT_TRUE(seen);
   EXPECT_EQ(s.room_sequence, (std::vector<std::string>{"5642", "5627"}));
   EXPECT_EQ(s.final_room, "5627");
+  // Through the door into the next cell of the compiled partition, not only the next room.
+  EXPECT_GE(s.cells_visited.size(), 2u);
   ASSERT_EQ(renderer.brightness.size(), 80u);
   const double before = renderer.brightness[63], after = renderer.brightness[79];
   EXPECT_FLOAT_EQ(renderer.levels.at(circuit_5627), 1.0f);
