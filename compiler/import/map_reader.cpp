@@ -45,6 +45,22 @@ bool parse_vec3(const std::string& text, Vec3& out) {
   return !in.fail() && std::isfinite(out.x) && std::isfinite(out.y) && std::isfinite(out.z);
 }
 
+double number_or(const MapEntity& e, const std::string& key, double fallback, const std::string& file);
+
+// Light styles and spawnflags are small integers; anything else is refused before it is cast (a fuzzed
+// "style" of 2e127 overflowed int).
+constexpr double kLargestEntityInteger = 1e6;
+
+int integer_or(const MapEntity& e, const std::string& key, int fallback, const std::string& file) {
+  const double v = number_or(e, key, fallback, file);
+  if (std::abs(v) > kLargestEntityInteger || v != std::floor(v))
+    throw Error(located(file, e.line,
+                        "entity key \"" + key + "\" needs a whole number up to 1000000, found \"" + e.keys.at(key) +
+                            "\"",
+                        "fix the entity's value"));
+  return static_cast<int>(v);
+}
+
 double number_or(const MapEntity& e, const std::string& key, double fallback, const std::string& file) {
   const auto it = e.keys.find(key);
   if (it == e.keys.end()) return fallback;
@@ -99,7 +115,7 @@ struct LightBuilder {
       }
     }
     const std::string targetname = e.get("targetname");
-    const int style = static_cast<int>(number_or(e, "style", 0.0, file));
+    const int style = integer_or(e, "style", 0, file);
     const std::string circuit = !targetname.empty() ? "switch " + targetname
                                 : style != 0        ? "style " + std::to_string(style)
                                                     : std::string("static");
@@ -107,7 +123,7 @@ struct LightBuilder {
     if (inserted) model.circuits.push_back({circuit, 1.0});
     // Switchable lights with START_OFF (spawnflags 1) start dark: the circuit's default level is 0 when every
     // light in it starts off.
-    const bool on = !(static_cast<int>(number_or(e, "spawnflags", 0.0, file)) & 1) || targetname.empty();
+    const bool on = !(integer_or(e, "spawnflags", 0, file) & 1) || targetname.empty();
     circuit_on[it->second] = circuit_on.count(it->second) ? (circuit_on[it->second] || on) : on;
     model.circuits[it->second].default_level = circuit_on[it->second] ? 1.0 : 0.0;
     l.circuit = it->second;
