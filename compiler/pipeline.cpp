@@ -280,7 +280,9 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
         out.luminaires[luminaire].name = rec.name;
         panel_polygons.emplace_back(id, luminaire);
       }
-      if (drawn(poly.role)) {  // occluders from the coarse triangulation: fewer triangles, same surface
+      // Shadow-ray occluders for the direct method only (radiosity casts against its own patches), from the
+      // coarse triangulation: fewer triangles, same surface.
+      if (drawn(poly.role) && config.lighting.method == LightingMethod::Direct) {
         const PolygonMesh coarse = mesh_polygon(poly, 0.0);
         for (std::size_t i = 0; i + 2 < coarse.triangles.size(); i += 3)
           occluders.push_back({coarse.vertices[coarse.triangles[i]], coarse.vertices[coarse.triangles[i + 1]],
