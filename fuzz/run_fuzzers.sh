@@ -35,14 +35,22 @@ build map_fuzzer "$src"/fuzz/map_fuzzer.cpp "${map[@]}" "${common[@]}"
 status=0
 for kind in dxf map; do
   corpus="$out/corpus-$kind"
-  mkdir -p "$corpus"
+  mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
   echo "run_fuzzers: ${kind}_fuzzer for ${seconds} s"
   if ! (cd "$out" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
         ./${kind}_fuzzer -seed=1 -runs=$((seconds * 5000)) -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-        -dict="$src/fuzz/$kind.dict" -print_final_stats=1 "$corpus" > "$out/${kind}_fuzzer.log" 2>&1); then
+        -dict="$src/fuzz/$kind.dict" -artifact_prefix="$out/artifacts-$kind/" -print_final_stats=1 "$corpus" > "$out/${kind}_fuzzer.log" 2>&1); then
     echo "run_fuzzers: ${kind}_fuzzer FAILED; the last lines of $out/${kind}_fuzzer.log:"
     tail -40 "$out/${kind}_fuzzer.log"
+    # The failing input itself, so that a failure seen only in CI's log can be replayed anywhere:
+    # base64 -d > input && ./${kind}_fuzzer input
+    for artifact in "$out"/artifacts-$kind/*; do
+      [ -f "$artifact" ] || continue
+      echo "run_fuzzers: input $(basename "$artifact") ($(stat -c %s "$artifact") bytes), base64:"
+      head -c 8192 "$artifact" | base64 -w 0
+      echo
+    done
     status=1
   else
     grep -E "stat::number_of_executed_units|cov:" "$out/${kind}_fuzzer.log" | tail -2
