@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "compiler/cleanup/cleanup.hpp"
+#include "compiler/geometry/coarse_mesh.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/openings.hpp"
 #include "compiler/import/import_model.hpp"
@@ -237,6 +238,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       panels.push_back(panel_polygon(model.luminaires[i]));
       panel_luminaire.push_back(i);
     }
+    std::size_t coarse_fallbacks = 0;
     auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire) {
       const PolygonMesh mesh =
           mesh_polygon(poly, poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid);
@@ -280,10 +282,19 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
         out.luminaires[luminaire].name = rec.name;
         panel_polygons.emplace_back(id, luminaire);
       }
+      // The coarse form drawn while moving: the polygon's fewest triangles over its diced vertices, or the
+      // diced triangles themselves where no match is found (never seen on the shared models; counted).
+      const PolygonMesh coarse = mesh_polygon(poly, 0.0);
+      const auto coarse_local = coarse_triangles(mesh, coarse);
+      if (!coarse_local) ++coarse_fallbacks;
+      out.coarse_ranges.push_back({static_cast<std::uint32_t>(out.coarse_indices.size()), 0});
+      for (std::uint32_t i : coarse_local ? *coarse_local : mesh.triangles)
+        out.coarse_indices.push_back(first_vertex + i);
+      out.coarse_ranges.back().index_count =
+          static_cast<std::uint32_t>(out.coarse_indices.size()) - out.coarse_ranges.back().first_index;
       // Shadow-ray occluders for the direct method only (radiosity casts against its own patches), from the
       // coarse triangulation: fewer triangles, same surface.
       if (drawn(poly.role) && config.lighting.method == LightingMethod::Direct) {
-        const PolygonMesh coarse = mesh_polygon(poly, 0.0);
         for (std::size_t i = 0; i + 2 < coarse.triangles.size(); i += 3)
           occluders.push_back({coarse.vertices[coarse.triangles[i]], coarse.vertices[coarse.triangles[i + 1]],
                                coarse.vertices[coarse.triangles[i + 2]], id});
@@ -306,8 +317,9 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       if (drawn(p.role)) emit(p, UINT32_MAX);
     for (std::uint32_t i = 0; i < panels.size(); ++i) emit(panels[i], panel_luminaire[i]);
     t.done(model.polygons.size() + panels.size(), out.polygons.size(),
-           fmt::format("{} vertices {} triangles grid {} m", out.vertices.size(), out.indices.size() / 3,
-                       config.lighting.grid));
+           fmt::format("{} vertices {} triangles grid {} m; coarse {} triangles ({} polygons kept diced)",
+                       out.vertices.size(), out.indices.size() / 3, config.lighting.grid,
+                       out.coarse_indices.size() / 3, coarse_fallbacks));
   }
 
   const std::size_t circuits = model.circuits.size();

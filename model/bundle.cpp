@@ -111,6 +111,8 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kCompactColour, c.compact_colour),
       pending(section::kCompactIntensity, c.compact_intensity),
       pending(section::kPolygonLight, c.polygon_light),
+      pending(section::kCoarseIndices, c.coarse_indices),
+      pending(section::kCoarseRanges, c.coarse_ranges),
       pending(section::kCells, c.cells),
       pending(section::kNodes, c.nodes),
       pending(section::kPvs, c.pvs),
@@ -245,6 +247,8 @@ void Bundle::validate() {
   get(section::kCompactColour, compact_colour_, false);
   get(section::kCompactIntensity, compact_intensity_, false);
   get(section::kPolygonLight, polygon_light_, false);
+  get(section::kCoarseIndices, coarse_indices_, false);
+  get(section::kCoarseRanges, coarse_ranges_, false);
   get(section::kCells, cells_, true);
   get(section::kNodes, nodes_, true);
   get(section::kPvs, pvs_, true);
@@ -291,6 +295,22 @@ void Bundle::validate() {
     if (p.group >= groups_.size() && !groups_.empty()) fail(name + " group out of range");
     if (p.role > 4) fail(name + " has an unknown role");
     check_string(p.name, "POLY");
+  }
+  // The coarse form may only use a polygon's own vertices: the renderer's flat light is per polygon.
+  if (!coarse_ranges_.empty() && coarse_ranges_.size() != polygons_.size())
+    fail("CRNG must hold one range per polygon");
+  if (coarse_ranges_.empty() != coarse_indices_.empty()) fail("CIDX and CRNG come together");
+  for (std::size_t i = 0; i < coarse_ranges_.size(); ++i) {
+    const auto& range = coarse_ranges_[i];
+    const auto& p = polygons_[i];
+    const std::string name = "CRNG " + std::to_string(i);
+    if (range.first_index % 3 != 0 || range.index_count % 3 != 0) fail(name + " is not whole triangles");
+    if (range.first_index > coarse_indices_.size() ||
+        range.index_count > coarse_indices_.size() - range.first_index)
+      fail(name + " runs past CIDX");
+    for (std::uint32_t k = range.first_index; k < range.first_index + range.index_count; ++k)
+      if (coarse_indices_[k] < p.first_vertex || coarse_indices_[k] - p.first_vertex >= p.vertex_count)
+        fail(name + " refers to vertex " + std::to_string(coarse_indices_[k]) + " outside its polygon");
   }
   for (const auto& m : materials_) check_string(m.name, "MATL");
   for (const auto& g : groups_) check_string(g.name, "GRPS");

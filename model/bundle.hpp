@@ -27,6 +27,8 @@ struct BundleContents {
   std::vector<std::array<std::uint8_t, 4>> compact_colour;  // empty, or one per vertex
   std::vector<std::uint8_t> compact_intensity;              // empty, or vertices * circuits
   std::vector<float> polygon_light;                         // empty, or polygons * circuits * 3
+  std::vector<std::uint32_t> coarse_indices;                // empty, or CIDX
+  std::vector<CoarseRangeRecord> coarse_ranges;             // empty, or one per polygon
   std::vector<CellRecord> cells;
   std::vector<NodeRecord> nodes;
   std::vector<std::uint32_t> pvs;
@@ -63,6 +65,9 @@ class Bundle {
   }
   [[nodiscard]] std::span<const std::uint8_t> compact_intensity() const { return compact_intensity_; }
   [[nodiscard]] std::span<const float> polygon_light() const { return polygon_light_; }
+  // Empty when the bundle has no coarse form (draw INDX instead).
+  [[nodiscard]] std::span<const std::uint32_t> coarse_indices() const { return coarse_indices_; }
+  [[nodiscard]] std::span<const CoarseRangeRecord> coarse_ranges() const { return coarse_ranges_; }
   [[nodiscard]] std::span<const CellRecord> cells() const { return cells_; }
   [[nodiscard]] std::span<const NodeRecord> nodes() const { return nodes_; }
   [[nodiscard]] std::span<const std::uint32_t> pvs() const { return pvs_; }
@@ -92,6 +97,8 @@ class Bundle {
   std::span<const std::array<std::uint8_t, 4>> compact_colour_;
   std::span<const std::uint8_t> compact_intensity_;
   std::span<const float> polygon_light_;
+  std::span<const std::uint32_t> coarse_indices_;
+  std::span<const CoarseRangeRecord> coarse_ranges_;
   std::span<const CellRecord> cells_;
   std::span<const NodeRecord> nodes_;
   std::span<const std::uint32_t> pvs_;

@@ -96,6 +96,14 @@ struct LuminaireRecord {
 };
 static_assert(sizeof(LuminaireRecord) == 64);
 
+// The coarse display while moving, optional: a polygon's fewest triangles (its outline, no lighting grid),
+// as a range of CIDX whose indices are vertices of the polygon's own VERT range. One record per polygon.
+struct CoarseRangeRecord {
+  std::uint32_t first_index;  // into CIDX, a multiple of 3
+  std::uint32_t index_count;
+};
+static_assert(sizeof(CoarseRangeRecord) == 8);
+
 // A cell of the model-space subdivision with its potentially visible set (a range of PVSL).
 struct CellRecord {
   float bounds_min[3];
@@ -140,6 +148,8 @@ inline constexpr std::uint32_t kCompactColour = tag("LCOL");
 inline constexpr std::uint32_t kCompactIntensity = tag("LINT");
 // Coarse display while moving, optional: float RGB per polygon per circuit, the area mean of its patches.
 inline constexpr std::uint32_t kPolygonLight = tag("PLGT");
+inline constexpr std::uint32_t kCoarseIndices = tag("CIDX");  // u32 vertex indices, see CoarseRangeRecord
+inline constexpr std::uint32_t kCoarseRanges = tag("CRNG");
 inline constexpr std::uint32_t kCells = tag("CELL");
 inline constexpr std::uint32_t kNodes = tag("NODE");
 inline constexpr std::uint32_t kPvs = tag("PVSL");  // polygon indices, per cell ranges

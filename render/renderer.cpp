@@ -37,8 +37,11 @@ struct Renderer::Impl {
   GLsizei shaded_vertices = 0;
   GLint u_view_projection = -1, u_light = -1, u_circuit_count = -1, u_levels = -1, u_ambient = -1,
         u_inv_exposure = -1, u_opacity = -1, u_polygon_light = -1, u_patch_weight = -1;
-  GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, light_buffer = 0, light_texture = 0,
-         polygon_buffer = 0, polygon_texture = 0;
+  GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_ibo = 0,
+         light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0;
+  // The coarse form (CIDX), drawn with flat polygon light while moving: POLY's records with their index
+  // ranges pointing into CIDX, so the draw-list code serves both. Empty when the bundle has no coarse form.
+  std::vector<model::PolygonRecord> coarse_polygons;
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
   // Coarse light: PLGT per circuit kept here, mixed on the CPU when the levels change (polygons x circuits,
@@ -47,8 +50,8 @@ struct Renderer::Impl {
   std::vector<float> polygon_mixed_levels{-1.0f};  // levels of the mix in polygon_buffer; -1: none yet
   void update_polygon_mix();
   std::vector<float> levels;
-  std::vector<std::optional<DrawList>> cell_lists;  // built on first visit
-  std::optional<DrawList> all_list;
+  std::vector<std::optional<DrawList>> cell_lists, coarse_cell_lists;  // built on first visit
+  std::optional<DrawList> all_list, coarse_all_list;
   bool culling = true;
   float glass_opacity = 0.25f;
   bool present_to_window = false;
@@ -84,6 +87,8 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &light_buffer);
     glDeleteBuffers(1, &ibo);
     glDeleteBuffers(1, &refined_ibo);
+    glDeleteBuffers(1, &coarse_ibo);
+    glDeleteVertexArrays(1, &coarse_vao);
     glDeleteBuffers(1, &shaded_vbo);
     glDeleteVertexArrays(1, &shaded_vao);
     glDeleteBuffers(1, &marker_vbo);
@@ -93,15 +98,20 @@ struct Renderer::Impl {
     glDeleteVertexArrays(1, &vao);
   }
 
-  const DrawList& list_for(std::uint32_t cell) {
+  // The index ranges of the fine (INDX) or coarse (CIDX) form.
+  [[nodiscard]] std::span<const model::PolygonRecord> polygons(bool coarse) const {
+    return coarse ? std::span<const model::PolygonRecord>(coarse_polygons) : bundle.polygons();
+  }
+  const DrawList& list_for(std::uint32_t cell, bool coarse) {
     if (cell >= cell_lists.size()) {
-      if (!all_list) all_list = build_draw_list_all(bundle.polygons());
-      return *all_list;
+      auto& all = coarse ? coarse_all_list : all_list;
+      if (!all) all = build_draw_list_all(polygons(coarse));
+      return *all;
     }
-    auto& slot = cell_lists[cell];
+    auto& slot = (coarse ? coarse_cell_lists : cell_lists)[cell];
     if (!slot) {
       const auto& record = bundle.cells()[cell];
-      slot = build_draw_list(bundle.polygons(), bundle.pvs().subspan(record.pvs_first, record.pvs_count));
+      slot = build_draw_list(polygons(coarse), bundle.pvs().subspan(record.pvs_first, record.pvs_count));
     }
     return *slot;
   }
@@ -207,6 +217,7 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   for (std::size_t c = 0; c < circuits; ++c)
     r.levels[c] = std::clamp(bundle.circuits()[c].default_level, 0.0f, 1.0f);
   r.cell_lists.resize(bundle.cells().size());
+  r.coarse_cell_lists.resize(bundle.cells().size());
 
   // Static geometry: the VERT records are uploaded as they are (stride 40) and never touched again. A second
   // VAO shares them with the refined index buffer (same layout as INDX, diagonals chosen by colour).
@@ -220,8 +231,22 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   glGenBuffers(1, &r.refined_ibo);
   glBindBuffer(GL_COPY_WRITE_BUFFER, r.refined_ibo);
   glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(indices.size_bytes()), indices.data(), GL_DYNAMIC_DRAW);
+  const auto coarse_indices = bundle.coarse_indices();
+  if (!coarse_indices.empty()) {
+    r.coarse_polygons.assign(bundle.polygons().begin(), bundle.polygons().end());
+    for (std::size_t p = 0; p < r.coarse_polygons.size(); ++p) {
+      r.coarse_polygons[p].first_index = bundle.coarse_ranges()[p].first_index;
+      r.coarse_polygons[p].index_count = bundle.coarse_ranges()[p].index_count;
+    }
+    glGenBuffers(1, &r.coarse_ibo);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, r.coarse_ibo);
+    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(coarse_indices.size_bytes()), coarse_indices.data(),
+                 GL_STATIC_DRAW);
+  }
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-  for (auto [vao, ibo] : {std::pair{&r.vao, r.ibo}, std::pair{&r.refined_vao, r.refined_ibo}}) {
+  for (auto [vao, ibo] : {std::pair{&r.vao, r.ibo}, std::pair{&r.refined_vao, r.refined_ibo},
+                          std::pair{&r.coarse_vao, r.coarse_ibo}}) {
+    if (ibo == 0) continue;
     glGenVertexArrays(1, vao);
     glBindVertexArray(*vao);
     glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
@@ -369,7 +394,10 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     if (cell >= r.bundle.cells().size()) cell = FrameStats::kNoCell;
   }
   const std::uint32_t list_cell = r.pvs_culling ? cell : FrameStats::kNoCell;
-  const DrawList* chosen = &r.list_for(list_cell);
+  // Flat polygon light needs no diced vertices: the coarse form draws the same surfaces in far fewer
+  // triangles.
+  const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.coarse_polygons.empty();
+  const DrawList* chosen = &r.list_for(list_cell, coarse);
   if (r.frustum_culling) {
     // The PVS's polygons (or all), less those wholly outside this frame's frustum, merged again.
     if (r.boxes.empty()) r.boxes = polygon_boxes(r.bundle.polygons(), r.bundle.vertices());
@@ -384,7 +412,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
       candidates = all;
     }
     r.frustum_list =
-        build_draw_list(r.bundle.polygons(), in_frustum(view_projection_matrix, r.boxes, candidates));
+        build_draw_list(r.polygons(coarse), in_frustum(view_projection_matrix, r.boxes, candidates));
     chosen = &r.frustum_list;
   }
   const DrawList& list = *chosen;
@@ -423,7 +451,8 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
     if (r.u_polygon_light >= 0) glUniform1i(r.u_polygon_light, 1);
     glActiveTexture(GL_TEXTURE0);
-    glBindVertexArray(options.diagonals ? r.refined_vao : r.vao);
+    const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao : r.vao;
+    glBindVertexArray(scene_vao);
     auto draw_batch = [](const DrawBatch& batch) {
       glMultiDrawElements(GL_TRIANGLES, batch.counts.data(), GL_UNSIGNED_INT,
                           reinterpret_cast<const void* const*>(batch.byte_offsets.data()),
@@ -435,7 +464,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
       // The subdivided quads (their own triangles in the refined index buffer are degenerate). Drawn for
       // every cell: they are few, and only while still.
       r.draw_shaded(r.shaded_vao, r.shaded_vertices, view_projection_matrix);
-      glBindVertexArray(options.diagonals ? r.refined_vao : r.vao);
+      glBindVertexArray(scene_vao);
     }
     if (!list.glass.empty()) {
       // After everything opaque, depth-tested but not written, so glass behind glass still shows. Alpha
@@ -528,12 +557,14 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glUniform4f(u_clip_plane, 0.0f, 0.0f, -1.0f, float(view.eye.z) + 0.5f);
   glUniform1f(u_patch_weight, 0.0f);  // flat polygon light: a plan, not a picture
   glUniform1f(u_opacity, 1.0f);
-  glBindVertexArray(vao);
-  if (!all_list) all_list = build_draw_list_all(bundle.polygons());
-  if (!all_list->opaque.empty())
-    glMultiDrawElements(GL_TRIANGLES, all_list->opaque.counts.data(), GL_UNSIGNED_INT,
-                        reinterpret_cast<const void* const*>(all_list->opaque.byte_offsets.data()),
-                        GLsizei(all_list->opaque.counts.size()));
+  // Flat light: the coarse form where the bundle has one.
+  const bool coarse = !coarse_polygons.empty();
+  glBindVertexArray(coarse ? coarse_vao : vao);
+  const DrawList& everything = list_for(FrameStats::kNoCell, coarse);
+  if (!everything.opaque.empty())
+    glMultiDrawElements(GL_TRIANGLES, everything.opaque.counts.data(), GL_UNSIGNED_INT,
+                        reinterpret_cast<const void* const*>(everything.opaque.byte_offsets.data()),
+                        GLsizei(everything.opaque.counts.size()));
   glDisable(GL_CLIP_DISTANCE0);
   glUniform4f(u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "compiler/geometry/coarse_mesh.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/openings.hpp"
 #include "compiler/import/dxf_reader.hpp"
@@ -52,6 +53,13 @@ MeshCheck check(const PolygonMesh& mesh, const Vec3& normal) {
   }
   for (const auto& v : mesh.vertices) out.finite = out.finite && std::isfinite(v.x + v.y + v.z);
   out.finite = out.finite && std::isfinite(mesh.normal.x + mesh.normal.y + mesh.normal.z);
+  return out;
+}
+
+// The coarse form over the diced vertices: the same surface and orientation in the fewest triangles.
+PolygonMesh coarse_over_fine(const PolygonMesh& fine, const std::vector<std::uint32_t>& indices) {
+  PolygonMesh out = fine;
+  out.triangles = indices;
   return out;
 }
 
@@ -222,6 +230,13 @@ TEST(Mesher, WholeHouseAfterCuttingCoversEveryPolygon) {
       EXPECT_TRUE(c.finite) << p.name;
       EXPECT_NEAR(c.area, polygon_area(p), 1e-6 * std::max(1.0, polygon_area(p))) << p.name;
       EXPECT_NEAR(c.open_edge_length, outline_length(p), 1e-5) << p.name;
+      if (cell > 0.0) {  // every house polygon has its coarse form over its diced vertices
+        const auto coarse = coarse_triangles(mesh, mesh_polygon(p, 0.0));
+        ASSERT_TRUE(coarse.has_value()) << p.name;
+        const MeshCheck cc = check(coarse_over_fine(mesh, *coarse), polygon_normal(p.vertices));
+        EXPECT_NEAR(cc.area, polygon_area(p), 1e-6 * std::max(1.0, polygon_area(p))) << p.name;
+        EXPECT_TRUE(cc.all_ccw) << p.name;
+      }
       polygons += polygon_area(p);
       triangles += c.area;
       count += mesh.triangles.size() / 3;
@@ -229,6 +244,46 @@ TEST(Mesher, WholeHouseAfterCuttingCoversEveryPolygon) {
     EXPECT_NEAR(triangles, polygons, 1e-6 * polygons);
     RecordProperty(cell > 0.0 ? "triangles_cell_0_5" : "triangles_undiced", static_cast<int>(count));
   }
+}
+
+TEST(CoarseMesh, SameSurfaceInFewerTrianglesOverTheDicedVertices) {
+  Polygon wall;  // 10 m x 3 m with a door notch at the floor and a window hole
+  wall.vertices = {{0, 0, 0}, {4, 0, 0},  {4, 0, 2.1}, {5, 0, 2.1},
+                   {5, 0, 0}, {10, 0, 0}, {10, 0, 3},  {0, 0, 3}};
+  wall.vertices = {wall.vertices.rbegin(), wall.vertices.rend()};  // facing -y: counter-clockwise from there
+  wall.holes = {{{7, 0, 1}, {8.5, 0, 1}, {8.5, 0, 2}, {7, 0, 2}}};
+  for (const Polygon& p : {tilted_l_with_hole(), wall}) {
+    for (double cell : {0.5, 0.25}) {
+      const PolygonMesh fine = mesh_polygon(p, cell), coarse = mesh_polygon(p, 0.0);
+      const auto indices = coarse_triangles(fine, coarse);
+      ASSERT_TRUE(indices.has_value()) << cell;
+      EXPECT_EQ(indices->size(), coarse.triangles.size());
+      EXPECT_LT(indices->size() * 4, fine.triangles.size()) << cell;
+      const MeshCheck c = check(coarse_over_fine(fine, *indices), polygon_normal(p.vertices));
+      EXPECT_NEAR(c.area, polygon_area(p), 1e-9 * polygon_area(p)) << cell;
+      EXPECT_TRUE(c.all_ccw) << cell;
+      EXPECT_NEAR(c.open_edge_length, outline_length(p), 1e-6) << cell;
+    }
+  }
+}
+
+TEST(CoarseMesh, CornerOffTheDicedVerticesFallsBackAndEmptyStaysEmpty) {
+  Polygon p;
+  p.vertices = {{0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0}};
+  const PolygonMesh coarse = mesh_polygon(p, 0.0);
+  PolygonMesh fine = mesh_polygon(p, 1.0);
+  // Within the match distance (last-bit differences) a corner still matches ...
+  PolygonMesh near = fine;
+  for (auto& v : near.vertices)
+    if (v == Vec3(4, 3, 0)) v.x += 0.1 * kCoarseVertexMatch;
+  EXPECT_TRUE(coarse_triangles(near, coarse).has_value());
+  // ... beyond it, there is no diced vertex to draw the coarse corner with.
+  for (auto& v : fine.vertices)
+    if (v == Vec3(4, 3, 0)) v.x += 10.0 * kCoarseVertexMatch;
+  EXPECT_FALSE(coarse_triangles(fine, coarse).has_value());
+  const auto empty = coarse_triangles(PolygonMesh{}, mesh_polygon(Polygon{}, 0.0));
+  ASSERT_TRUE(empty.has_value());
+  EXPECT_TRUE(empty->empty());
 }
 
 }  // namespace

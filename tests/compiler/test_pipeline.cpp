@@ -49,6 +49,18 @@ TEST_F(PipelineTest, HouseCompilesWithOneLitCircuitPerRoom) {
   ASSERT_EQ(b.light.size(), b.vertices.size() * b.circuits.size() * 3);
   for (float v : b.light) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   for (const auto& p : b.polygons) EXPECT_NE(p.role, static_cast<std::uint32_t>(model::Role::Opening));
+  // The coarse form drawn while moving: one range per polygon, over its own vertices, far fewer triangles.
+  ASSERT_EQ(b.coarse_ranges.size(), b.polygons.size());
+  for (std::size_t i = 0; i < b.polygons.size(); ++i) {
+    const auto& range = b.coarse_ranges[i];
+    const auto& p = b.polygons[i];
+    ASSERT_GT(range.index_count, 0u) << i;
+    EXPECT_LE(range.index_count, p.index_count) << i;
+    for (std::uint32_t k = range.first_index; k < range.first_index + range.index_count; ++k)
+      ASSERT_TRUE(b.coarse_indices[k] >= p.first_vertex &&
+                  b.coarse_indices[k] < p.first_vertex + p.vertex_count);
+  }
+  EXPECT_LT(b.coarse_indices.size() * 10, b.indices.size());
 
   // Over each room's floor (EnergyPlus splits non-convex floors into triangles), the room's own circuit gives
   // more light than any other circuit.
@@ -68,9 +80,11 @@ TEST_F(PipelineTest, HouseCompilesWithOneLitCircuitPerRoom) {
   for (const auto& [room, sum] : floor_light) {
     const std::uint32_t own = circuit_of.at(room);
     EXPECT_GT(sum[own], 0.0) << room;
-    for (std::size_t c = 0; c < circuits; ++c)
-      if (c != own)
+    for (std::size_t c = 0; c < circuits; ++c) {
+      if (c != own) {
         EXPECT_GT(sum[own], sum[c]) << room << " vs circuit " << b.strings.c_str() + b.circuits[c].name;
+      }
+    }
     ++rooms_checked;
   }
   EXPECT_GE(rooms_checked, 16u);

@@ -104,6 +104,33 @@ TEST_F(BundleTest, OptionalLightFormsRoundTrip) {
   EXPECT_NE(open_error().find("LINT"), std::string::npos);
 }
 
+TEST_F(BundleTest, CoarseFormRoundTripsAndStaysInsideItsPolygon) {
+  BundleContents c = small_bundle();
+  c.coarse_indices = {0, 1, 3, 0, 3, 2};
+  c.coarse_ranges = {{0, 6}};
+  write_bundle(path_, c);
+  const auto b = Bundle::open(path_);
+  ASSERT_EQ(b->coarse_ranges().size(), 1u);
+  EXPECT_EQ(b->coarse_ranges()[0].index_count, 6u);
+  EXPECT_EQ(b->coarse_indices()[2], 3u);
+
+  c.polygons[0].vertex_count = 3;  // vertex 3 now lies outside the polygon that draws it
+  c.indices = {0, 1, 2, 0, 2, 1};
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("CRNG 0 refers to vertex 3 outside its polygon"), std::string::npos)
+      << open_error();
+
+  c = small_bundle();
+  c.coarse_indices = {0, 1, 3, 0, 3, 2};
+  c.coarse_ranges = {{3, 6}};  // past the end of CIDX
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("CRNG 0 runs past CIDX"), std::string::npos) << open_error();
+
+  c.coarse_ranges.clear();  // indices without ranges
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("CIDX and CRNG come together"), std::string::npos) << open_error();
+}
+
 TEST_F(BundleTest, EveryFlippedByteIsRejected) {
   write_bundle(path_, small_bundle());
   const std::vector<char> good = bytes();

@@ -85,6 +85,39 @@ TEST_P(RefineImageTest, CoarseToPatchBlendIsMonotone) {
 
 // Aliasing measure: mean absolute difference from a 64-sample picture, over pixels where that picture
 // differs from the single-sample one (the edges). Must fall as samples grow: 1 > 4 > 16.
+// The coarse form (CIDX) draws the moving frame with each polygon's fewest triangles: the same flat picture
+// as the diced triangles give, in a fraction of the triangles; once still, the patches are the same frame.
+TEST_P(RefineImageTest, CoarseFormDrawsTheSameMovingFrameInFewerTriangles) {
+  TwoRooms scene;
+  scene.light_gradient = true;
+  scene.subdivisions = 6;
+  auto diced = open_two_rooms(scene, "coarse_off");
+  scene.coarse_form = true;
+  auto coarse = open_two_rooms(scene, "coarse_on");
+  ASSERT_FALSE(coarse->coarse_indices().empty());
+  const View view = rolled_view();
+  std::vector<Image> moving, still;
+  std::vector<std::uint32_t> triangles;
+  for (const auto* bundle : {diced.get(), coarse.get()}) {
+    Renderer renderer(*bundle);
+    renderer.set_refine_settings({.blend_steps = 2, .aa_samples = 1});
+    renderer.set_moving_level(MovingLevel::Coarse);
+    ASSERT_TRUE(renderer.refine(view, kWidth, kHeight));
+    ASSERT_EQ(renderer.last_stats().patch_weight, 0.0f);
+    triangles.push_back(renderer.last_stats().triangles_drawn);
+    moving.push_back(renderer.read_pixels(kWidth, kHeight));
+    still.push_back(converge(renderer, view));
+  }
+  EXPECT_EQ(triangles[1] * 36, triangles[0]) << "6 x 6 quads per rectangle against one";
+  // Flat light per polygon: the two triangulations cover the same pixels with the same colour. Depth is
+  // interpolated over different triangles, so where two polygons meet at a corner a pixel may go either
+  // way; allow those few (the rooms' edges are a small fraction of the frame).
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < moving[0].rgba.size(); ++i) differing += moving[0].rgba[i] != moving[1].rgba[i];
+  EXPECT_LE(differing, moving[0].rgba.size() / 1000) << differing << " bytes differ";
+  EXPECT_EQ(still[0].rgba, still[1].rgba) << "patches do not use the coarse form";
+}
+
 TEST_P(RefineImageTest, AccumulationLowersEdgeAliasing) {
   TwoRooms scene;
   auto bundle = open_two_rooms(scene, "aliasing");

@@ -59,6 +59,12 @@ struct Builder {
         const std::uint32_t q = b + j * row + i;
         for (std::uint32_t k : {q, q + 1, q + row + 1, q, q + row + 1, q + row}) c.indices.push_back(k);
       }
+    if (scene.coarse_form) {
+      const std::uint32_t top = b + std::uint32_t(n) * row;  // corners b, b + n, top + n, top
+      c.coarse_ranges.push_back({std::uint32_t(c.coarse_indices.size()), 6});
+      for (std::uint32_t k : {b, b + row - 1, top + row - 1, b, top + row - 1, top})
+        c.coarse_indices.push_back(k);
+    }
     return id;
   }
 

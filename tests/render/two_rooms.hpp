@@ -35,6 +35,8 @@ struct TwoRooms {
   // Four cells (each room halved at y = 2) under a three-node tree; each room's PVS leaves out the other
   // room's copy of the shared wall, which faces away from it: conservative, and smaller than everything.
   bool four_cells = false;
+  // Write the coarse form (CIDX/CRNG): each rectangle as two triangles over its grid's corner vertices.
+  bool coarse_form = false;
 };
 
 [[nodiscard]] model::BundleContents make_two_rooms(const TwoRooms& scene);
