@@ -1,9 +1,12 @@
 #include "render/accumulator.hpp"
 
+#include <array>
+#include <cmath>
 #include <string>
 
 #include "model/error.hpp"
 #include "render/gl_check.hpp"
+#include "render/tonemap.hpp"
 
 namespace walk::render {
 namespace {
@@ -16,29 +19,52 @@ void main() {
 }
 )glsl";
 
+// Samples arrive as display (sRGB) bytes; they are summed as linear light, which is what a pixel's area
+// integrates, and encoded again at the resolve. Averaging the bytes instead darkens every edge: half white
+// over black would give 128 where the light says 188. Decoding by table: exact for 8-bit input, no pow().
 const char* const kAddFragment = R"glsl(#version 330 core
 uniform sampler2D u_source;
 uniform float u_weight;
+uniform float u_decode[256];
 out vec4 o_sum;
-void main() { o_sum = vec4(texelFetch(u_source, ivec2(gl_FragCoord.xy), 0).rgb * u_weight, u_weight); }
-)glsl";
-
-const char* const kResolveFragment = R"glsl(#version 330 core
-uniform sampler2D u_source;
-out vec4 o_colour;
 void main() {
-  vec4 s = texelFetch(u_source, ivec2(gl_FragCoord.xy), 0);
-  o_colour = vec4(s.a > 0.0 ? s.rgb / s.a : vec3(0.0), 1.0);
+  ivec3 code = ivec3(round(texelFetch(u_source, ivec2(gl_FragCoord.xy), 0).rgb * 255.0));
+  vec3 linear = vec3(u_decode[code.r], u_decode[code.g], u_decode[code.b]);
+  o_sum = vec4(linear * u_weight, u_weight);
 }
 )glsl";
+
+const std::string kResolveFragment = std::string(R"glsl(#version 330 core
+uniform sampler2D u_source;
+out vec4 o_colour;
+)glsl") + kSrgbEncodeGlsl + R"glsl(
+void main() {
+  vec4 s = texelFetch(u_source, ivec2(gl_FragCoord.xy), 0);
+  o_colour = vec4(s.a > 0.0 ? srgb_encode(s.rgb / s.a) : vec3(0.0), 1.0);
+}
+)glsl";
+
+// The sRGB transfer function's inverse at each 8-bit code.
+std::array<float, 256> srgb_decode_table() {
+  std::array<float, 256> table{};
+  for (int i = 0; i < 256; ++i) {
+    const double c = i / 255.0;
+    table[i] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+  }
+  return table;
+}
 
 }  // namespace
 
 Accumulator::Accumulator()
     : add_program_("accumulate", kFullScreenVertex, kAddFragment),
-      resolve_program_("resolve", kFullScreenVertex, kResolveFragment) {
+      resolve_program_("resolve", kFullScreenVertex, kResolveFragment.c_str()) {
   u_add_source_ = add_program_.uniform("u_source");
   u_add_weight_ = add_program_.uniform("u_weight");
+  const auto decode = srgb_decode_table();
+  glUseProgram(add_program_.id());
+  glUniform1fv(glGetUniformLocation(add_program_.id(), "u_decode[0]"), 256, decode.data());
+  glUseProgram(0);
   u_resolve_source_ = resolve_program_.uniform("u_source");
   glGenVertexArrays(1, &vao_);
 }

@@ -1,6 +1,7 @@
 #pragma once
-// Accumulation buffer for anti-aliasing: each jittered frame (display values, RGBA8) is added into an RGBA32F
-// target times its filter weight, with the weight summed in alpha; resolving divides by it. Needs a current
+// Accumulation buffer for anti-aliasing: each jittered frame (display values, RGBA8) is decoded to linear
+// light and added into an RGBA32F target times its filter weight, with the weight summed in alpha; resolving
+// divides by it and encodes to sRGB again. Needs a current
 // GL context for its whole life.
 #include <glad/gl.h>
 

@@ -30,7 +30,7 @@ namespace walk::render {
 
 struct Renderer::Impl {
   const model::Bundle& bundle;
-  ShaderProgram program{"scene", kLightMixerVertexShader, kTonemapFragmentShader};
+  ShaderProgram program{"scene", kLightMixerVertexShader, kTonemapFragmentShader.c_str()};
   // Subdivided quads carry their mixed radiosity per vertex: made on first use, like the accumulator.
   std::optional<ShaderProgram> shaded_program;
   GLuint shaded_vao = 0, shaded_vbo = 0;
@@ -569,7 +569,8 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glUniform4f(u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
 
   // The viewer: a red arrow above everything, pointing where they look.
-  if (!shaded_program) shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader);
+  if (!shaded_program)
+    shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader.c_str());
   if (!marker_vao) make_shaded_vao(marker_vao, marker_vbo);
   glm::vec2 f(view.forward.x, view.forward.y);
   f = glm::length(f) > 1e-6f ? glm::normalize(f) : glm::vec2(1, 0);
@@ -623,7 +624,8 @@ void Renderer::Impl::choose_diagonals() {
   shaded_vertices = GLsizei(sub.triangles.size());
   if (!sub.triangles.empty()) {
     // The map view may have made the program already; the VAO is this step's own.
-    if (!shaded_program) shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader);
+    if (!shaded_program)
+      shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader.c_str());
     if (!shaded_vao) make_shaded_vao(shaded_vao, shaded_vbo);
     glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sub.triangles.size() * sizeof(ShadedVertex)),

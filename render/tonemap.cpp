@@ -1,13 +1,10 @@
 #include "render/tonemap.hpp"
 
+#include <string>
+
 namespace walk::render {
 
-const char* const kTonemapFragmentShader = R"glsl(#version 330 core
-in vec3 v_radiosity;
-uniform float u_inv_exposure;
-uniform float u_opacity;
-out vec4 o_colour;
-
+const char* const kSrgbEncodeGlsl = R"glsl(
 // sRGB's 1/2.4 power from three square roots (Taylor's fit): within 0.25/255 of the exact curve, and
 // cheaper than pow(), which llvmpipe evaluates as exp2(log2()) polynomials: about 2.5 ms less per 1280x720
 // frame on 2 cores.
@@ -19,7 +16,14 @@ vec3 srgb_encode(vec3 c) {
   vec3 high = 0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * c;
   return mix(c * 12.92, high, step(vec3(0.0031308), c));
 }
+)glsl";
 
+const std::string kTonemapFragmentShader = std::string(R"glsl(#version 330 core
+in vec3 v_radiosity;
+uniform float u_inv_exposure;
+uniform float u_opacity;
+out vec4 o_colour;
+)glsl") + kSrgbEncodeGlsl + R"glsl(
 void main() { o_colour = vec4(srgb_encode(v_radiosity * u_inv_exposure), u_opacity); }
 )glsl";
 

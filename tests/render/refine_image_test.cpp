@@ -1,10 +1,13 @@
 // Adaptive refinement through OSMesa and EGL: coarse-to-patch blending is monotone, accumulation lowers an
 // edge aliasing measure as samples grow, and a converged renderer draws nothing.
+#include <glad/gl.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "render/accumulator.hpp"
+#include "render/framebuffer.hpp"
 #include "render_test_support.hpp"
 #include "two_rooms.hpp"
 
@@ -116,6 +119,44 @@ TEST_P(RefineImageTest, CoarseFormDrawsTheSameMovingFrameInFewerTriangles) {
   for (std::size_t i = 0; i < moving[0].rgba.size(); ++i) differing += moving[0].rgba[i] != moving[1].rgba[i];
   EXPECT_LE(differing, moving[0].rgba.size() / 1000) << differing << " bytes differ";
   EXPECT_EQ(still[0].rgba, still[1].rgba) << "patches do not use the coarse form";
+}
+
+// Samples are averaged as light, not as display bytes: white and black in equal weight resolve to the
+// sRGB code of linear 0.5 (188), not to 128; equal samples come back unchanged (decode and encode agree).
+TEST_P(RefineImageTest, AccumulationAveragesLinearLight) {
+  constexpr int kSize = 8;
+  auto fill = [](Framebuffer& target, float grey) {
+    target.ensure_size(kSize, kSize);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.id());
+    glClearColor(grey, grey, grey, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  };
+  auto resolved = [](Accumulator& sum, Framebuffer& out) {
+    out.ensure_size(kSize, kSize);
+    sum.resolve(out.id());
+    std::uint8_t rgba[4] = {};
+    glBindFramebuffer(GL_FRAMEBUFFER, out.id());
+    glReadPixels(kSize / 2, kSize / 2, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return int(rgba[0]);
+  };
+  Framebuffer white, black, grey, out;
+  fill(white, 1.0f);
+  fill(black, 0.0f);
+  fill(grey, 100.0f / 255.0f);
+  Accumulator sum;
+  sum.reset(kSize, kSize);
+  sum.add(white.colour_texture(), 1.0f);
+  sum.add(black.colour_texture(), 1.0f);
+  EXPECT_NEAR(resolved(sum, out), 188, 1) << "linear 0.5 encodes to 188";
+  sum.reset(kSize, kSize);
+  sum.add(grey.colour_texture(), 0.25f);
+  sum.add(grey.colour_texture(), 2.0f);
+  EXPECT_NEAR(resolved(sum, out), 100, 1) << "a constant picture is a fixed point";
+  sum.reset(kSize, kSize);
+  sum.add(white.colour_texture(), 3.0f);  // weights: three quarters white
+  sum.add(black.colour_texture(), 1.0f);
+  EXPECT_NEAR(resolved(sum, out), 225, 1) << "linear 0.75 encodes to 225";
 }
 
 TEST_P(RefineImageTest, AccumulationLowersEdgeAliasing) {
