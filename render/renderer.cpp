@@ -461,9 +461,13 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glUniform1f(r.u_opacity, 1.0f);
     if (!list.opaque.empty()) draw_batch(list.opaque);
     if (options.diagonals && r.shaded_vertices > 0) {
-      // The subdivided quads (their own triangles in the refined index buffer are degenerate). Drawn for
-      // every cell: they are few, and only while still.
+      // The subdivided quads, over their own quads (kept as a crack filler): pulled one depth step towards
+      // the eye so they win wherever both cover a pixel. Drawn for every cell: they are few, and only
+      // while still.
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(-1.0f, -1.0f);
       r.draw_shaded(r.shaded_vao, r.shaded_vertices, view_projection_matrix);
+      glDisable(GL_POLYGON_OFFSET_FILL);
       glBindVertexArray(scene_vao);
     }
     if (!list.glass.empty()) {
@@ -617,8 +621,9 @@ void Renderer::Impl::choose_diagonals() {
   const float exposure = bundle.meta().exposure > 0.0f ? bundle.meta().exposure : 1.0f;
   const Subdivision sub =
       subdivide(opaque, vertices, colour, settings.subdivision_error * exposure, settings.subdivision_depth);
-  for (std::size_t i : sub.replaced_quads)
-    std::fill_n(refined_indices.begin() + opaque[i].first_index, 6, opaque[i].v[0]);
+  // The replaced quads stay in the index buffer, under their sub-quads: where a sub-quad's edge midpoint
+  // meets a neighbour that was not split (a T-junction), pixels that fall between the triangles in float
+  // show the quad's own Gouraud colour instead of a crack to the background.
   stats.quads_subdivided = std::uint32_t(sub.replaced_quads.size());
   stats.subdivision_triangles = std::uint32_t(sub.triangles.size() / 3);
   shaded_vertices = GLsizei(sub.triangles.size());

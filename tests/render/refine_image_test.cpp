@@ -259,6 +259,27 @@ TEST_P(RefineImageTest, BilinearSubdivisionWhereTheTwistIsLarge) {
   }
 }
 
+// Where subdivided quads meet quads that are not, the sub-quads' edge midpoints are T-junctions: in float,
+// pixels along such an edge can fall between the triangles and show the clear colour. The room is closed
+// (ambient light everywhere), so a black pixel is a crack.
+TEST_P(RefineImageTest, SubdivisionLeavesNoCracks) {
+  TwoRooms scene;
+  scene.light_twist_half = true;
+  scene.subdivisions = 8;
+  auto bundle = open_two_rooms(scene, "twist_half");
+  View view = looking_along_x(-1.0, 1.0);
+  view.forward = {-1.0, 0.31, 0.17};  // oblique: edges off the pixel grid
+  view.eye.x = 3.3;
+  Renderer renderer(*bundle);
+  renderer.set_refine_settings({.blend_steps = 0, .aa_samples = 1, .subdivision_depth = 3});
+  const Image image = converge(renderer, view);
+  ASSERT_GT(renderer.last_stats().quads_subdivided, 0u);
+  int black = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+    black += image.rgba[i] == 0 && image.rgba[i + 1] == 0 && image.rgba[i + 2] == 0;
+  EXPECT_EQ(black, 0) << "pixels showing the clear colour through cracks";
+}
+
 // The Reduced moving level draws at half size and scales up: a flat wall keeps its colour, the frame its
 // size, and the next still frame is full resolution again.
 TEST_P(RefineImageTest, ReducedMovingLevelIsHalfResolution) {

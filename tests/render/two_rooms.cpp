@@ -46,8 +46,9 @@ struct Builder {
         }
         vr.polygon = id;
         c.vertices.push_back(vr);
+        const bool twisted = scene.light_twist || (scene.light_twist_half && 2 * i < n);
         const double gradient = scene.light_gradient ? 0.4 + 1.2 * double(i) / n
-                                : scene.light_twist  ? ((i + j) % 2 == 0 ? 1.6 : 0.4)
+                                : twisted            ? ((i + j) % 2 == 0 ? 1.6 : 0.4)
                                                      : 1.0;
         for (int ci = 0; ci < scene.circuits; ++ci)
           for (int k = 0; k < 3; ++k)

@@ -32,6 +32,9 @@ struct TwoRooms {
   // Vertex light scaled 1.6 and 0.4 in a checkerboard over the grid: with one quad per rectangle, opposite
   // corners match, so Gouraud triangles show 1.6 along the diagonal where the bilinear patch has 1.0.
   bool light_twist = false;
+  // The checkerboard on the columns i < n/2 only (needs subdivisions >= 4): those quads are subdivided, their
+  // neighbours are not, so the refined picture has T-junctions along the boundary.
+  bool light_twist_half = false;
   // Four cells (each room halved at y = 2) under a three-node tree; each room's PVS leaves out the other
   // room's copy of the shared wall, which faces away from it: conservative, and smaller than everything.
   bool four_cells = false;
