@@ -217,8 +217,9 @@ void Daemon::frame(double now, double dt) {
   view.fov_y_degrees = config_.display.fov_y_degrees;
   renderer_.set_dimmers(levels_);
   const double t0 = wall_seconds();
-  renderer_.draw(view);
-  renderer_.present();
+  const bool drew = renderer_.draw(view);
+  renderer_.present(drew);
+  summary_.frames_drawn += drew;
   const double shown = devices::monotonic_seconds();
   summary_.render_seconds += wall_seconds() - t0;
   for (const auto& [role, t] : pending_stamps_) latencies_[role].push_back(shown - t);
@@ -278,10 +279,10 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
     notifier_.ready();
     const glm::dvec3 w = to_world(navigator_.feet());
     const double wall = wall_seconds() - wall_start;
-    notifier_.frame(wall,
-                    fmt::format("{:.1f} fps, cell {}, room {}, at ({:.2f}, {:.2f}, {:.2f}); {}",
-                                summary_.render_seconds > 0 ? summary_.frames / summary_.render_seconds : 0.0,
-                                cell_, room_name(), w.x, w.y, w.z, device_status()));
+    notifier_.frame(
+        wall, fmt::format("{:.1f} fps, cell {}, room {}, at ({:.2f}, {:.2f}, {:.2f}); {}",
+                          summary_.render_seconds > 0 ? summary_.frames_drawn / summary_.render_seconds : 0.0,
+                          cell_, room_name(), w.x, w.y, w.z, device_status()));
     summary_.simulated_seconds = sim ? static_cast<double>(n + 1) * step : now;
     if (!sim) {
       // Real time: hold simulation.frame_rate instead of spinning (a window without vsync would burn a core).
@@ -292,7 +293,7 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
   notifier_.stopping();
 
   summary_.wall_seconds = wall_seconds() - wall_start;
-  summary_.fps = summary_.render_seconds > 0 ? summary_.frames / summary_.render_seconds : 0.0;
+  summary_.fps = summary_.render_seconds > 0 ? summary_.frames_drawn / summary_.render_seconds : 0.0;
   summary_.distance = navigator_.distance_walked();
   summary_.final_feet = to_world(navigator_.feet());
   summary_.final_eye = summary_.final_feet + glm::dvec3(0, 0, config_.walker.eye_height);
@@ -320,9 +321,10 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
   }
   write_summary(config_.output.folder, summary_);
   spdlog::info(
-      "stopped ({}): {} frames, {:.1f} s simulated, {:.1f} s wall, {:.1f} fps, {:.1f} m walked, rooms: {}",
-      summary_.stopped_by, summary_.frames, summary_.simulated_seconds, summary_.wall_seconds, summary_.fps,
-      summary_.distance, fmt::join(summary_.rooms_visited, ", "));
+      "stopped ({}): {} frames ({} drawn), {:.1f} s simulated, {:.1f} s wall, {:.1f} fps, {:.1f} m walked, "
+      "rooms: {}",
+      summary_.stopped_by, summary_.frames, summary_.frames_drawn, summary_.simulated_seconds,
+      summary_.wall_seconds, summary_.fps, summary_.distance, fmt::join(summary_.rooms_visited, ", "));
   return summary_;
 }
 

@@ -17,9 +17,10 @@ class FrameRenderer {
   virtual ~FrameRenderer() = default;
   [[nodiscard]] virtual const char* name() const = 0;
   virtual void set_dimmers(std::span<const float> levels) = 0;  // one per circuit, 0..1
-  virtual void draw(const render::View& view) = 0;
-  virtual void save_png(const std::string& path) = 0;  // the frame just drawn
-  virtual void present() {}
+  // Returns whether the picture changed: a refining renderer draws nothing once a still view has converged.
+  virtual bool draw(const render::View& view) = 0;
+  virtual void save_png(const std::string& path) = 0;  // the picture now shown
+  virtual void present(bool /*drew*/) {}  // shows a new picture, if drawn; handles window events either way
   [[nodiscard]] virtual bool windowed() const { return false; }  // a window runs in real time
   [[nodiscard]] virtual bool close_requested() { return false; }
 };

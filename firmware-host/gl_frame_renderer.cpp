@@ -9,17 +9,20 @@ namespace {
 
 class GlFrameRenderer final : public FrameRenderer {
  public:
-  GlFrameRenderer(const model::Bundle& bundle, const DisplayConfig& display) {
+  GlFrameRenderer(const model::Bundle& bundle, const DisplayConfig& display) : refine_(display.refine) {
     render::BackendOptions options;
     options.kind = render::parse_backend_kind(display.backend);
     options.width = display.width;
     options.height = display.height;
     options.fullscreen = display.fullscreen;
+    options.monitor = display.monitor;
+    options.drm_device = display.drm_device;
     options.title = "Walkthrough";
     backend_ = render::Backend::create(options);
     backend_->make_current();
     renderer_ = std::make_unique<render::Renderer>(bundle);
     renderer_->set_present_to_window(backend_->has_window());
+    renderer_->set_target_rate(display.target_hz);
   }
   ~GlFrameRenderer() override {
     backend_->make_current();  // GL objects must be released with their context current
@@ -27,20 +30,23 @@ class GlFrameRenderer final : public FrameRenderer {
   }
   [[nodiscard]] const char* name() const override { return backend_->name(); }
   void set_dimmers(std::span<const float> levels) override { renderer_->set_dimmers(levels); }
-  void draw(const render::View& view) override {
+  bool draw(const render::View& view) override {
+    if (refine_) return renderer_->refine(view, backend_->width(), backend_->height());
     renderer_->draw(view, backend_->width(), backend_->height());
+    return true;
   }
   void save_png(const std::string& path) override {
     render::write_png(path, renderer_->read_pixels(backend_->width(), backend_->height()));
   }
-  void present() override {
-    backend_->present();
+  void present(bool drew) override {
+    if (drew) backend_->present();  // an idle kiosk swaps nothing: the window keeps the converged picture
     backend_->poll_events();
   }
   [[nodiscard]] bool windowed() const override { return backend_->has_window(); }
   [[nodiscard]] bool close_requested() override { return backend_->close_requested(); }
 
  private:
+  bool refine_;
   std::unique_ptr<render::Backend> backend_;
   std::unique_ptr<render::Renderer> renderer_;
 };

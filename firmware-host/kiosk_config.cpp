@@ -74,11 +74,16 @@ KioskConfig load_kiosk_config(const std::string& path) {
   }
 
   if (auto s = top.table("display")) {
-    s->only({"backend", "width", "height", "fullscreen", "fov_y_deg"});
+    s->only({"backend", "width", "height", "fullscreen", "monitor", "drm_device", "fov_y_deg", "refine",
+             "target_hz"});
     c.display.backend = s->string("backend").value_or(c.display.backend);
     if (c.display.backend != "auto" && c.display.backend != "osmesa" && c.display.backend != "egl" &&
-        c.display.backend != "glfw")
-      s->fail("backend", "unknown backend '" + c.display.backend + "' (auto, osmesa, egl or glfw)");
+        c.display.backend != "glfw" && c.display.backend != "gbm")
+      s->fail("backend", "unknown backend '" + c.display.backend + "' (auto, osmesa, egl, glfw or gbm)");
+    c.display.monitor = s->integer("monitor", c.display.monitor, 0, 63);
+    c.display.drm_device = s->string("drm_device").value_or(c.display.drm_device);
+    c.display.refine = s->boolean("refine", c.display.refine);
+    c.display.target_hz = s->number("target_hz", c.display.target_hz, 1.0, 480.0);
     c.display.width = s->integer("width", c.display.width, 16, 16384);
     c.display.height = s->integer("height", c.display.height, 16, 16384);
     c.display.fullscreen = s->boolean("fullscreen", c.display.fullscreen);

@@ -13,11 +13,18 @@
 namespace walk::kiosk {
 
 struct DisplayConfig {
-  std::string backend = "auto";  // auto | osmesa | egl | glfw
+  std::string backend = "auto";  // auto | osmesa | egl | glfw | gbm
   int width = 1280;
   int height = 720;
   bool fullscreen = false;
+  int monitor = 0;         // GLFW full screen and GBM: which connected display
+  std::string drm_device;  // GBM only: e.g. /dev/dri/card1; empty: the first card
   double fov_y_degrees = 60.0;
+  // Adaptive refinement (the paper's): coarse while moving at the level the governor picks for target_hz,
+  // patches, diagonals, subdivision and anti-aliasing while still, and nothing drawn once converged.
+  // false: every frame at full quality (for comparison).
+  bool refine = true;
+  double target_hz = 60.0;
 };
 
 struct StartConfig {

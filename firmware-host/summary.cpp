@@ -53,6 +53,7 @@ std::string summary_json(const Summary& s) {
     << "  \"stopped_by\": " << quoted(s.stopped_by) << ",\n"
     << "  \"renderer\": " << quoted(s.renderer) << ",\n"
     << "  \"frames\": " << s.frames << ",\n"
+    << "  \"frames_drawn\": " << s.frames_drawn << ",\n"
     << "  \"simulated_seconds\": " << num(s.simulated_seconds) << ",\n"
     << "  \"wall_seconds\": " << num(s.wall_seconds) << ",\n"
     << "  \"render_seconds\": " << num(s.render_seconds) << ",\n"

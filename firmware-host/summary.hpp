@@ -12,11 +12,12 @@ struct Summary {
   std::string mode;        // "simulated" or "realtime"
   std::string stopped_by;  // "end", "signal", "window" or "next_building"
   std::string renderer;
-  std::uint64_t frames = 0;
-  double simulated_seconds = 0.0;            // time on the daemon's clock
-  double wall_seconds = 0.0;                 // whole loop
-  double render_seconds = 0.0;               // wall time inside draw + present
-  double fps = 0.0;                          // frames / render_seconds
+  std::uint64_t frames = 0;        // steps of the loop
+  std::uint64_t frames_drawn = 0;  // steps that drew a new picture (a converged still view draws none)
+  double simulated_seconds = 0.0;  // time on the daemon's clock
+  double wall_seconds = 0.0;       // whole loop
+  double render_seconds = 0.0;     // wall time inside draw + present
+  double fps = 0.0;                // frames_drawn / render_seconds
   std::vector<std::uint32_t> cells_visited;  // in first-visit order
   std::vector<std::string> rooms_visited;    // group names, first-visit order
   std::vector<std::string> room_sequence;    // every room change, starting with the start room

@@ -167,5 +167,48 @@ TEST_F(DaemonTest, WalkerWithoutDevicesStandsStill) {
   EXPECT_EQ(s.final_feet, glm::dvec3(102, 202, 10));
 }
 
+// The real renderer with adaptive refinement, as walkd runs it: while the walker stands still the picture
+// converges and then nothing is drawn (an idle kiosk); a dimmer change draws again; walking draws every
+// frame.
+TEST_F(DaemonTest, StillKioskStopsDrawingOnceRefinedAndDimmersWakeIt) {
+  DisplayConfig display;
+  display.backend = "osmesa";
+  display.width = 160;
+  display.height = 90;
+  std::unique_ptr<FrameRenderer> renderer;
+  try {
+    renderer = make_gl_renderer(*bundle_, display);
+  } catch (const Error& e) {
+    GTEST_SKIP() << "no OSMesa here: " << e.what();
+  }
+  config_.simulation.seconds = 8.0;  // 240 frames
+  config_.devices.treadmill = DeviceConfig{"mock", write("still.csv", "time,speed\n0,0\n")};
+  std::atomic<bool> stop{false};
+  auto run_still = [&](const std::string& dimmer_trace) {
+    config_.devices.dimmer_panel = DeviceConfig{"mock", write("dimmers.csv", dimmer_trace)};
+    auto fresh = make_gl_renderer(*bundle_, display);
+    Daemon still(config_, *bundle_, *fresh, open_devices(config_.devices));
+    return still.run(stop);
+  };
+  const Summary steady = run_still("time,ch0\n0,0.5\n");
+  const Summary relit = run_still("time,ch0\n0,0.5\n6,0.75\n");
+  EXPECT_EQ(steady.frames, 240u);
+  // One moving frame, the refinement steps (diagonals, subdivision, samples as the governor fits them per
+  // frame), then nothing: the converged picture stays on screen.
+  EXPECT_GE(steady.frames_drawn, 3u);
+  EXPECT_LT(steady.frames_drawn, 120u) << "a converged still view must not be drawn again";
+  // The dimmer change at t = 6 s refines again (from the diagonals, without a blend), then idles again.
+  EXPECT_GT(relit.frames_drawn, steady.frames_drawn);
+  EXPECT_LT(relit.frames_drawn, 2 * steady.frames_drawn + 2);
+
+  config_.devices.treadmill = DeviceConfig{"mock", write("walk.csv", "time,speed\n0,1.0\n")};
+  config_.simulation.seconds = 2.0;
+  auto walking_renderer = make_gl_renderer(*bundle_, display);
+  Daemon walking(config_, *bundle_, *walking_renderer, open_devices(config_.devices));
+  const Summary w = walking.run(stop);
+  EXPECT_GT(w.distance, 1.0);
+  EXPECT_EQ(w.frames_drawn, w.frames) << "a moving view is drawn every frame";
+}
+
 }  // namespace
 }  // namespace walk::kiosk

@@ -14,9 +14,10 @@ class FakeRenderer final : public FrameRenderer {
  public:
   [[nodiscard]] const char* name() const override { return "fake"; }
   void set_dimmers(std::span<const float> l) override { levels.assign(l.begin(), l.end()); }
-  void draw(const render::View& view) override {
+  bool draw(const render::View& view) override {
     views.push_back(view);
     if (on_draw) on_draw(views.size());
+    return true;
   }
   void save_png(const std::string& path) override {
     std::ofstream(path) << "png";

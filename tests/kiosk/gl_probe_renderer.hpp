@@ -31,7 +31,7 @@ class GlProbeRenderer final : public FrameRenderer {
     levels.assign(l.begin(), l.end());
     renderer_->set_dimmers(l);
   }
-  void draw(const render::View& view) override {
+  bool draw(const render::View& view) override {
     renderer_->draw(view, width_, height_);
     const render::Image img = renderer_->read_pixels(width_, height_);
     double sum = 0.0;
@@ -39,6 +39,7 @@ class GlProbeRenderer final : public FrameRenderer {
       sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
     brightness.push_back(sum / (3.0 * width_ * height_));
     if (on_draw) on_draw(brightness.size());
+    return true;
   }
   void save_png(const std::string& path) override {
     render::write_png(path, renderer_->read_pixels(width_, height_));

@@ -85,9 +85,24 @@ png_every = 2
   EXPECT_EQ(c.output.folder, (dir_ / "conf" / "out").string());
 }
 
+TEST_F(KioskConfigTest, DisplayTakesGbmAndTheRefinementKnobs) {
+  const auto c = load_kiosk_config(write(std::string(kMinimal) +
+                                         "[display]\nbackend = \"gbm\"\nmonitor = 1\ndrm_device = "
+                                         "\"/dev/dri/card1\"\nrefine = false\ntarget_hz = 75\n"));
+  EXPECT_EQ(c.display.backend, "gbm");
+  EXPECT_EQ(c.display.monitor, 1);
+  EXPECT_EQ(c.display.drm_device, "/dev/dri/card1");
+  EXPECT_FALSE(c.display.refine);
+  EXPECT_DOUBLE_EQ(c.display.target_hz, 75.0);
+  const auto msg = error_of(std::string(kMinimal) + "[display]\ntarget_hz = 0\n");
+  EXPECT_NE(msg.find("display.target_hz"), std::string::npos) << msg;
+}
+
 TEST_F(KioskConfigTest, MinimalConfigUsesDefaults) {
   const auto c = load_kiosk_config(write(kMinimal));
   EXPECT_EQ(c.display.backend, "auto");
+  EXPECT_TRUE(c.display.refine);
+  EXPECT_DOUBLE_EQ(c.display.target_hz, 60.0);
   EXPECT_DOUBLE_EQ(c.simulation.seconds, 0.0);
   EXPECT_DOUBLE_EQ(c.walker.step_height, 0.35);
 }
