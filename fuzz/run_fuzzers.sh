@@ -2,6 +2,8 @@
 # Builds the libFuzzer targets with clang (ASan + UBSan) into OUT and runs each for SECONDS on a copy of the
 # committed seed corpus, with a fixed seed and run count: CI explores the same inputs (or, on a slower machine
 # stopped by the time limit, a prefix of them) as the run that was checked before submitting.
+# A hang is an input running past 60 s: ctest runs tests in parallel, and under ASan on a loaded machine an
+# input with deep INSERT nesting was seen at 11 s (0.17 s in a release build), so 10 s would be a false alarm.
 # Exit 0: no crash, no hang (-timeout), no rejection without file and line; 77: no
 # clang with libFuzzer here (the caller skips). Usage: run_fuzzers.sh SOURCE_DIR OUT [SECONDS]
 set -euo pipefail
@@ -39,7 +41,7 @@ for kind in dxf map; do
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
   echo "run_fuzzers: ${kind}_fuzzer for ${seconds} s"
   if ! (cd "$out" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-        ./${kind}_fuzzer -seed=1 -runs=$((seconds * 5000)) -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+        ./${kind}_fuzzer -seed=1 -runs=$((seconds * 5000)) -max_total_time="$seconds" -timeout=60 -report_slow_units=60 -rss_limit_mb=2048 -max_len=65536 \
         -dict="$src/fuzz/$kind.dict" -artifact_prefix="$out/artifacts-$kind/" -print_final_stats=1 "$corpus" > "$out/${kind}_fuzzer.log" 2>&1); then
     echo "run_fuzzers: ${kind}_fuzzer FAILED; the last lines of $out/${kind}_fuzzer.log:"
     tail -40 "$out/${kind}_fuzzer.log"
