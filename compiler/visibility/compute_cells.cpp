@@ -1,11 +1,13 @@
 #include "compiler/visibility/compute_cells.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
 #include <iterator>
 
+#include "compiler/visibility/draw_order.hpp"
 #include "compiler/visibility/pvs_flow.hpp"
 #include "compiler/visibility/pvs_sampled.hpp"
 
@@ -115,8 +117,10 @@ CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfi
     spdlog::warn("visibility: leak to the outside, {:.4f} m2 at world ({:.3f}, {:.3f}, {:.3f})",
                  leaks[i].area, leaks[i].where.x + out.meta.origin[0], leaks[i].where.y + out.meta.origin[1],
                  leaks[i].where.z + out.meta.origin[2]);
+  const DrawOrderCounts order = order_for_cells(out);
   return {out.polygons.size(), out.cells.size(),
-          std::string(pvs_method_name(config.method)) + ": " + r.summary()};
+          std::string(pvs_method_name(config.method)) + ": " + r.summary() +
+              fmt::format("; draw ranges {} -> {} over all cells", order.ranges_before, order.ranges_after)};
 }
 
 }  // namespace walk::compiler

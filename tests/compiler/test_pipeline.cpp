@@ -9,6 +9,7 @@
 
 #include "compiler/pipeline.hpp"
 #include "compiler/radiosity/compact_light.hpp"
+#include "compiler/visibility/draw_order.hpp"
 #include "model/error.hpp"
 
 namespace walk::compiler {
@@ -61,6 +62,8 @@ TEST_F(PipelineTest, HouseCompilesWithOneLitCircuitPerRoom) {
                   b.coarse_indices[k] < p.first_vertex + p.vertex_count);
   }
   EXPECT_LT(b.coarse_indices.size() * 10, b.indices.size());
+  // INDX is laid out for the cells: a few multi-draw ranges per cell, not one per polygon.
+  EXPECT_LT(count_draw_ranges(b), 4 * b.cells.size());
 
   // Over each room's floor (EnergyPlus splits non-convex floors into triangles), the room's own circuit gives
   // more light than any other circuit.

@@ -1,0 +1,24 @@
+#pragma once
+// Lays out the index buffers so that each cell's PVS is few contiguous ranges: the renderer merges
+// neighbouring polygons' ranges into one multi-draw entry, so a cell whose polygons lie together costs a
+// handful of entries instead of one per polygon. Polygon ids, vertices and light do not move; only where
+// each polygon's triangles sit in INDX (and CIDX) changes.
+#include <cstdint>
+
+#include "model/bundle.hpp"
+
+namespace walk::compiler {
+
+struct DrawOrderCounts {
+  std::uint64_t ranges_before = 0;  // summed over cells, opaque and glass apart, as the renderer merges
+  std::uint64_t ranges_after = 0;
+};
+
+// Ranges the renderer would draw for every cell's PVS with the bundle as it is.
+[[nodiscard]] std::uint64_t count_draw_ranges(const model::BundleContents& bundle);
+
+// Sorts polygons by the set of cells whose PVS holds them (glass last, as it is drawn apart), cells in tree
+// order, and rewrites INDX and CIDX in that order. Needs out.cells and out.pvs filled.
+DrawOrderCounts order_for_cells(model::BundleContents& out);
+
+}  // namespace walk::compiler

@@ -1,0 +1,68 @@
+// Index-buffer layout for the cells: every polygon keeps its triangles, and each cell's PVS becomes fewer
+// contiguous ranges (the renderer's multi-draw entries).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <vector>
+
+#include "compiler/visibility/draw_order.hpp"
+#include "model/model.hpp"
+
+namespace walk::compiler {
+namespace {
+
+// Six one-triangle polygons (polygon 3 is glass) and three cells seeing {0,2,4}, {2,4,5} and {1,3}.
+model::BundleContents six_polygons_three_cells() {
+  model::BundleContents b;
+  for (std::uint32_t p = 0; p < 6; ++p) {
+    model::PolygonRecord rec{};
+    rec.first_index = 3 * p;
+    rec.index_count = 3;
+    rec.role = static_cast<std::uint32_t>(p == 3 ? model::Role::Glass : model::Role::Opaque);
+    b.polygons.push_back(rec);
+    for (std::uint32_t k = 0; k < 3; ++k) b.indices.push_back(10 * p + k);
+    b.coarse_ranges.push_back({3 * p, 3});
+    for (std::uint32_t k = 0; k < 3; ++k) b.coarse_indices.push_back(10 * p + k);
+  }
+  b.pvs = {0, 2, 4, 2, 4, 5, 1, 3};
+  b.cells.push_back({{}, {}, 0, 3});
+  b.cells.push_back({{}, {}, 3, 3});
+  b.cells.push_back({{}, {}, 6, 2});
+  return b;
+}
+
+TEST(DrawOrder, CellsBecomeContiguousAndPolygonsKeepTheirTriangles) {
+  model::BundleContents b = six_polygons_three_cells();
+  const model::BundleContents before = b;
+  // Id order: cell 0 is three runs (0, 2, 4), cell 1 two (2 and 4-5), cell 2 one opaque and one glass.
+  EXPECT_EQ(count_draw_ranges(b), 7u);
+  const DrawOrderCounts counts = order_for_cells(b);
+  EXPECT_EQ(counts.ranges_before, 7u);
+  // Sorted by membership: 2 and 4 (cells 0, 1), 0 (cell 0), 5 (cell 1), 1 (cell 2), glass 3 last.
+  // Cell 0 is one run, cell 1 two (2-4 and 5), cell 2 one opaque and one glass.
+  EXPECT_EQ(counts.ranges_after, 5u);
+  EXPECT_EQ(count_draw_ranges(b), 5u);
+  for (std::size_t p = 0; p < b.polygons.size(); ++p) {
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(b.indices[b.polygons[p].first_index + k], before.indices[before.polygons[p].first_index + k]);
+      EXPECT_EQ(b.coarse_indices[b.coarse_ranges[p].first_index + k], 10 * p + k);
+    }
+  }
+  EXPECT_EQ(b.polygons[3].first_index, 15u) << "glass is laid out after everything opaque";
+}
+
+TEST(DrawOrder, NoCellsOrEmptyPvsChangesNothingThatMatters) {
+  model::BundleContents b = six_polygons_three_cells();
+  b.cells.clear();
+  b.pvs.clear();
+  const DrawOrderCounts counts = order_for_cells(b);
+  EXPECT_EQ(counts.ranges_before, 0u);
+  EXPECT_EQ(counts.ranges_after, 0u);
+  for (std::size_t p = 0; p < 6; ++p)
+    EXPECT_EQ(b.indices[b.polygons[p].first_index], 10 * p) << "every polygon still has its triangle";
+  model::BundleContents empty;
+  EXPECT_EQ(order_for_cells(empty).ranges_after, 0u);
+}
+
+}  // namespace
+}  // namespace walk::compiler
