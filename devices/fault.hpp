@@ -2,9 +2,11 @@
 // One device's health: a fault (gone, timed out, garbage) is logged once per episode and then at most every
 // `log_every` seconds as a count; reopening is retried with exponential backoff; recovery is logged once.
 // Thread-safe: a backend's reader thread records, the daemon's loop reads the state.
+#include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "devices/devices.hpp"
 
@@ -48,5 +50,23 @@ class FaultTracker {
   double next_log_ = -1e300;
   std::uint64_t faults_ = 0, logged_ = 0, unlogged_ = 0;
 };
+
+// The reopen step every reader shares: when `source` is closed and the backoff has run out, open it (a
+// failure is recorded as down()). Returns whether it is open now. While backing off on a running thread it
+// sleeps `slice_ms` rather than spin; tests call their reader's step() with no thread, which never sleeps.
+template <typename Source>
+bool ensure_open(Source& source, bool& open, FaultTracker& faults, double now, bool threaded, int slice_ms) {
+  if (open) return true;
+  if (!faults.may_reopen(now)) {
+    if (threaded) std::this_thread::sleep_for(std::chrono::milliseconds(slice_ms));
+    return false;
+  }
+  if (auto why = source.open(); !why.empty()) {
+    faults.down(now, why);
+    return false;
+  }
+  open = true;
+  return true;
+}
 
 }  // namespace walk::devices

@@ -50,4 +50,18 @@ Bounds bounds_of(const Model& model) {
   return b;
 }
 
+Vec3 area_vector(const std::vector<Vec3>& loop) {
+  Vec3 n{0.0};
+  if (loop.size() < 3) return n;
+  const Vec3 o = loop.front();
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec3 a = loop[i] - o;
+    const Vec3 b = loop[(i + 1) % loop.size()] - o;
+    n.x += (a.y - b.y) * (a.z + b.z);
+    n.y += (a.z - b.z) * (a.x + b.x);
+    n.z += (a.x - b.x) * (a.y + b.y);
+  }
+  return n;
+}
+
 }  // namespace walk::model

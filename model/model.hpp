@@ -86,4 +86,9 @@ struct Bounds {
 
 [[nodiscard]] Bounds bounds_of(const Model& model);
 
+// Newell's vector of a closed loop: normal to its best-fit plane, length twice its area (zero for fewer
+// than three corners). Summed relative to the first corner, so a building far from the origin keeps its
+// precision.
+[[nodiscard]] Vec3 area_vector(const std::vector<Vec3>& loop);
+
 }  // namespace walk::model

@@ -93,18 +93,8 @@ std::size_t simplify(std::vector<Vec3>& loop, double tol) {
   return removed;
 }
 
-Vec3 newell(const std::vector<Vec3>& v) {
-  Vec3 n(0.0);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec3& a = v[i];
-    const Vec3& b = v[(i + 1) % v.size()];
-    n += Vec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
-  return n;
-}
-
 double planarity_error(const model::Polygon& p, Vec3& normal, double& size) {
-  normal = newell(p.vertices);
+  normal = model::area_vector(p.vertices);
   const double len = glm::length(normal);
   model::Bounds b;
   for (const Vec3& v : p.vertices) b.add(v);
@@ -145,7 +135,7 @@ std::size_t coplanar_overlaps(const model::Model& model, double tol, std::size_t
   std::map<std::array<long long, 4>, std::vector<std::size_t>> planes;
   for (std::size_t i = 0; i < model.polygons.size(); ++i) {
     const auto& p = model.polygons[i];
-    Vec3 n = newell(p.vertices);
+    Vec3 n = model::area_vector(p.vertices);
     if (!(glm::length(n) > 0.0)) continue;
     n = glm::normalize(n);
     const double d = glm::dot(n, p.vertices[0]);
@@ -216,7 +206,7 @@ CleanupStats clean_up(model::Model& model) {
     stats.corners_removed += simplify(p.vertices, tol);
     for (auto& hole : p.holes) stats.corners_removed += simplify(hole, tol);
     std::erase_if(p.holes, [](const auto& h) { return h.size() < 3; });
-    if (p.vertices.size() < 3 || !(0.5 * glm::length(newell(p.vertices)) > tol * tol)) {
+    if (p.vertices.size() < 3 || !(0.5 * glm::length(model::area_vector(p.vertices)) > tol * tol)) {
       ++stats.faces_dropped;
       continue;
     }
@@ -226,7 +216,7 @@ CleanupStats clean_up(model::Model& model) {
         planarity_error(p, normal, size) > kNonPlanarRelative * size) {
       ++stats.nonplanar_split;
       for (auto& t : split(p)) {
-        if (0.5 * glm::length(newell(t.vertices)) > tol * tol) {
+        if (0.5 * glm::length(model::area_vector(t.vertices)) > tol * tol) {
           kept.push_back(std::move(t));
           ++stats.triangles_added;
         }

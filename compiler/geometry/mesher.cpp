@@ -86,17 +86,7 @@ Path clip_x(const Path& piece, cInt limit, bool keep_right) {
 }  // namespace
 
 model::Vec3 polygon_normal(const std::vector<model::Vec3>& vertices) {
-  if (vertices.size() < 3) return model::Vec3{0.0};
-  // Newell's method, relative to the first vertex for precision far from the origin.
-  const model::Vec3 o = vertices.front();
-  model::Vec3 n{0.0};
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const model::Vec3 a = vertices[i] - o;
-    const model::Vec3 b = vertices[(i + 1) % vertices.size()] - o;
-    n.x += (a.y - b.y) * (a.z + b.z);
-    n.y += (a.z - b.z) * (a.x + b.x);
-    n.z += (a.x - b.x) * (a.y + b.y);
-  }
+  const model::Vec3 n = model::area_vector(vertices);
   const double length = glm::length(n);
   if (!(length > 0.0) || !std::isfinite(length)) return model::Vec3{0.0};
   return n / length;

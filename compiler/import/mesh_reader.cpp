@@ -23,16 +23,6 @@ using model::Vec3;
 constexpr double kSameNormalCosine = 0.999;
 constexpr double kSamePlaneDistance = 1e-3;
 
-Vec3 newell(const std::vector<Vec3>& v) {
-  Vec3 n(0.0);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec3& a = v[i];
-    const Vec3& b = v[(i + 1) % v.size()];
-    n += Vec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-  }
-  return n;  // length = twice the area
-}
-
 struct Lamp {
   Vec3 normal{0.0};
   double offset = 0.0;
@@ -131,7 +121,7 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
       if (emissive) {
         p.role = model::Role::Luminaire;
         ++stats.emissive_faces;
-        const Vec3 n2 = newell(p.vertices);
+        const Vec3 n2 = model::area_vector(p.vertices);
         const double twice = glm::length(n2);
         if (twice > 0.0) {
           const Vec3 n = n2 / twice;

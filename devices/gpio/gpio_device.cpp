@@ -2,9 +2,6 @@
 
 #include <spdlog/fmt/fmt.h>
 
-#include <chrono>
-#include <thread>
-
 namespace walk::devices {
 
 GpioReader::GpioReader(std::string name, std::unique_ptr<GpioSource> source, FaultPolicy policy, TimeFn clock)
@@ -15,19 +12,10 @@ void GpioReader::start(std::function<void(const LineEvent&)> on_event, int timeo
 }
 
 void GpioReader::step(const std::function<void(const LineEvent&)>& on_event, int timeout_ms) {
-  double now = clock_();
-  if (!open_) {
-    if (!faults_.may_reopen(now)) {
-      if (thread_.running()) std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
-      return;
-    }
-    if (auto why = source_->open(); !why.empty()) {
-      faults_.down(now, why);
-      return;
-    }
-    open_ = true;
-    faults_.good(now);
-  }
+  const double now = clock_();
+  const bool was_open = open_;
+  if (!ensure_open(*source_, open_, faults_, now, thread_.running(), timeout_ms)) return;
+  if (!was_open) faults_.good(now);  // an open chip is live: lines may stay silent
   events_.clear();
   if (source_->wait(timeout_ms, events_) < 0) {
     faults_.down(clock_(), source_->describe() + ": " + source_->error());

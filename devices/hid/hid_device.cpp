@@ -3,7 +3,6 @@
 #include <spdlog/fmt/fmt.h>
 
 #include <algorithm>
-#include <chrono>
 
 #include "model/error.hpp"
 
@@ -27,19 +26,9 @@ void HidReader::start(int timeout_ms) {
 
 void HidReader::step(int timeout_ms) {
   double now = clock_();
-  if (!open_) {
-    if (!faults_.may_reopen(now)) {
-      // Backoff: sleep a bounded slice rather than spin; tests call step() without the thread.
-      if (thread_.running()) std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
-      return;
-    }
-    if (auto why = source_->open(); !why.empty()) {
-      faults_.down(now, why);
-      return;
-    }
-    open_ = true;
-    faults_.opened();
-  }
+  const bool was_open = open_;
+  if (!ensure_open(*source_, open_, faults_, now, thread_.running(), timeout_ms)) return;
+  if (!was_open) faults_.opened();  // stale until the first good report
   const int n = source_->read(buffer_, timeout_ms);
   now = clock_();
   if (n < 0) {

@@ -5,29 +5,22 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include <cstdio>
-#include <cstring>
 #include <string>
 
 #include "model/error.hpp"
 #include "render/backend/backend_factories.hpp"
+#include "render/backend/egl_common.hpp"
 #include "render/gl_loader.hpp"
 
 namespace walk::render::detail {
 namespace {
 
-bool has_extension(const char* list, const char* name) {
-  if (!list) return false;
-  const std::size_t n = std::strlen(name);
-  for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
-    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
-  return false;
+std::string egl_error(const char* what) {
+  return detail::egl_error("egl", what);
 }
 
-std::string egl_error(const char* what) {
-  char code[16];
-  std::snprintf(code, sizeof code, "0x%04x", unsigned(eglGetError()));
-  return std::string("egl: ") + what + " failed (EGL error " + code + ")";
+bool has_extension(const char* list, const char* name) {
+  return has_egl_extension(list, name);
 }
 
 // Surfaceless Mesa first (no device files needed), then the first enumerated device.
@@ -78,15 +71,7 @@ class EGLBackend final : public Backend {
         if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count == 0)
           throw Error(egl_error("eglChooseConfig for desktop OpenGL"));
       }
-      const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                        3,
-                                        EGL_CONTEXT_MINOR_VERSION,
-                                        3,
-                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                        EGL_NONE};
-      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attribs);
-      if (context_ == EGL_NO_CONTEXT) throw Error(egl_error("eglCreateContext for GL 3.3 core"));
+      context_ = create_gl33_core_context(display_, config, "egl");
       make_current();
     } catch (...) {
       release();

@@ -13,22 +13,20 @@
 #include <xf86drmMode.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
 
 #include "model/error.hpp"
 #include "render/backend/backend_factories.hpp"
+#include "render/backend/egl_common.hpp"
 #include "render/gl_loader.hpp"
 
 namespace walk::render::detail {
 namespace {
 
 std::string egl_error(const char* what) {
-  char code[16];
-  std::snprintf(code, sizeof code, "0x%04x", unsigned(eglGetError()));
-  return std::string("gbm: ") + what + " failed (EGL error " + code + ")";
+  return detail::egl_error("gbm", what);
 }
 
 // The first card in /dev/dri, or the one configured; a clear error when there is none (containers, CI).
@@ -68,15 +66,7 @@ class GBMBackend final : public Backend {
         throw Error(egl_error("opening the GBM EGL display"));
       if (!eglBindAPI(EGL_OPENGL_API)) throw Error(egl_error("eglBindAPI(EGL_OPENGL_API)"));
       const EGLConfig config = choose_config();
-      const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                        3,
-                                        EGL_CONTEXT_MINOR_VERSION,
-                                        3,
-                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                        EGL_NONE};
-      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attribs);
-      if (context_ == EGL_NO_CONTEXT) throw Error(egl_error("eglCreateContext for GL 3.3 core"));
+      context_ = create_gl33_core_context(display_, config, "gbm");
       egl_surface_ =
           eglCreateWindowSurface(display_, config, reinterpret_cast<EGLNativeWindowType>(surface_), nullptr);
       if (egl_surface_ == EGL_NO_SURFACE) throw Error(egl_error("eglCreateWindowSurface on the GBM surface"));
