@@ -35,7 +35,9 @@ double FrameGovernor::estimate(std::uint32_t cell, MovingLevel level) const {
 }
 
 MovingLevel FrameGovernor::choose_moving(std::uint32_t cell) {
-  const MovingLevel level = settled(cell);
+  const std::uint32_t judged = !moving_.contains(cell) && last_cell_ ? *last_cell_ : cell;
+  last_cell_ = cell;
+  const MovingLevel level = settled(judged);
   int& count = choices_[cell];
   if (int(level) + 1 < kMovingLevels && ++count >= kProbeInterval) {
     count = 0;

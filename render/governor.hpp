@@ -4,6 +4,7 @@
 // estimate fits the frame budget. Pure CPU; times come from the caller, so it is tested without a clock.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 
 namespace walk::render {
@@ -24,7 +25,9 @@ class FrameGovernor {
   // The best level whose estimate in this cell fits the budget with 10 % headroom. An untried level is tried
   // unless the level below it is known to leave less than a quarter of the budget; Reduced is the floor.
   // Every `kProbeInterval`-th choice in a cell below the top level tries the next level up once, so an
-  // estimate spoilt by one slow frame (a busy CPU) does not hold the cell down for good.
+  // estimate spoilt by one slow frame (a busy CPU) does not hold the cell down for good. A cell with no
+  // measurement yet starts at the level of the cell chosen for last (the one just left, of similar cost),
+  // not at the top, so walking into a new cell does not cost a slow frame.
   [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell);
   static constexpr int kProbeInterval = 120;
   // While still: how many accumulation samples fit in one frame (at least 1).
@@ -38,6 +41,7 @@ class FrameGovernor {
       moving_;  // per cell, per level; < 0 unknown
   double sample_ms_ = -1.0;
   std::unordered_map<std::uint32_t, int> choices_;  // per cell, since its last probe
+  std::optional<std::uint32_t> last_cell_;          // of the last choice
   [[nodiscard]] MovingLevel settled(std::uint32_t cell) const;
 };
 

@@ -97,6 +97,17 @@ TEST(FrameGovernor, ChoosesPatchesOnlyWhereTheyFitPerCell) {
   EXPECT_EQ(governor.choose_moving(0), MovingLevel::Patches);
 }
 
+TEST(FrameGovernor, ANewCellStartsAtTheLevelOfTheCellJustLeft) {
+  FrameGovernor governor(60.0);
+  EXPECT_EQ(governor.choose_moving(3), MovingLevel::Patches);
+  governor.record_moving(3, MovingLevel::Patches, 40.0);
+  governor.record_moving(3, MovingLevel::Coarse, 12.0);
+  EXPECT_EQ(governor.choose_moving(3), MovingLevel::Coarse);
+  EXPECT_EQ(governor.choose_moving(7), MovingLevel::Coarse) << "cell 7 unknown: judged as cell 3";
+  governor.record_moving(7, MovingLevel::Coarse, 3.0);
+  EXPECT_EQ(governor.choose_moving(7), MovingLevel::Patches) << "its own cheap frame: try patches there";
+}
+
 TEST(FrameGovernor, HalfResolutionIsTheFloorWhenCoarseIsTooSlow) {
   FrameGovernor governor(60.0);
   governor.record_moving(4, MovingLevel::Patches, 40.0);
