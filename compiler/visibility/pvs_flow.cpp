@@ -12,6 +12,9 @@ struct Directed {
   const Winding* winding;
   Plane plane;  // normal pointing into `to`
   std::uint32_t to;
+  // Cells a flow through this portal could reach (a flood from `to` that never re-enters the cell it
+  // leaves), one bit each: when all of them are done, nothing new lies beyond and the flow skips it.
+  std::vector<std::uint64_t> beyond;
 };
 
 class Flow {
@@ -22,22 +25,46 @@ class Flow {
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
       for (const auto id : g.cell_portals[c]) {
         const Portal& p = g.portals[id];
-        Plane pl;
-        pl.n[p.axis] = p.back == c ? 1.0 : -1.0;
-        pl.d = -pl.n[p.axis] * p.coord;
-        out_[c].push_back({&p.hull, pl, p.back == c ? p.front : p.back});
+        out_[c].push_back({&p.hull,
+                           axial_plane(p.axis, p.coord, p.back == c ? 1.0 : -1.0),
+                           p.back == c ? p.front : p.back,
+                           {}});
       }
+    const std::size_t words = (part.cells.size() + 63) / 64;
+    for (std::uint32_t c = 0; c < part.cells.size(); ++c)
+      for (auto& d : out_[c]) {
+        d.beyond.assign(words, 0);
+        std::vector<std::uint32_t> stack{d.to};
+        set_bit(d.beyond, d.to);
+        while (!stack.empty()) {
+          const auto x = stack.back();
+          stack.pop_back();
+          for (const auto& e : out_[x])
+            if (e.to != c && !bit(d.beyond, e.to)) {
+              set_bit(d.beyond, e.to);
+              stack.push_back(e.to);
+            }
+        }
+      }
+    cells_of_polygon_.resize(polys.size());
+    for (std::uint32_t c = 0; c < part.cells.size(); ++c)
+      for (const auto p : part.cell_polygons[c]) cells_of_polygon_[p].push_back(c);
   }
 
   void run(std::uint32_t cell, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& visible,
            std::uint64_t& steps, bool& fell_back) {
     seen_cell_.assign(part_.cells.size(), 0);
     seen_poly_.assign(polys_.size(), 0);
+    done_.assign((part_.cells.size() + 63) / 64, 0);
+    unseen_in_cell_.resize(part_.cells.size());
+    for (std::uint32_t c = 0; c < part_.cells.size(); ++c)
+      unseen_in_cell_[c] = static_cast<std::uint32_t>(part_.cell_polygons[c].size());
     on_stack_.assign(part_.cells.size(), 0);
     steps_ = 0;
     mark_all(cell);
     on_stack_[cell] = 1;
     for (const auto& d : out_[cell]) {
+      if (all_done(d.beyond)) continue;
       source_plane_ = d.plane;
       recurse(d.to, *d.winding, nullptr, nullptr);
       if (steps_ > budget_) break;
@@ -52,9 +79,32 @@ class Flow {
   }
 
  private:
-  void mark_all(std::uint32_t c) {
+  static bool bit(const std::vector<std::uint64_t>& bits, std::uint32_t i) {
+    return bits[i / 64] >> (i % 64) & 1;
+  }
+  static void set_bit(std::vector<std::uint64_t>& bits, std::uint32_t i) {
+    bits[i / 64] |= std::uint64_t(1) << (i % 64);
+  }
+  bool all_done(const std::vector<std::uint64_t>& cells) const {
+    for (std::size_t w = 0; w < cells.size(); ++w)
+      if (cells[w] & ~done_[w]) return false;
+    return true;
+  }
+  // A cell is done when it has been reached and every polygon in it is in the PVS.
+  void see_cell(std::uint32_t c) {
+    if (seen_cell_[c]) return;
     seen_cell_[c] = 1;
-    for (const auto p : part_.cell_polygons[c]) seen_poly_[p] = 1;
+    if (unseen_in_cell_[c] == 0) set_bit(done_, c);
+  }
+  void see_polygon(std::uint32_t p) {
+    if (seen_poly_[p]) return;
+    seen_poly_[p] = 1;
+    for (const auto c : cells_of_polygon_[p])
+      if (--unseen_in_cell_[c] == 0 && seen_cell_[c]) set_bit(done_, c);
+  }
+  void mark_all(std::uint32_t c) {
+    see_cell(c);
+    for (const auto p : part_.cell_polygons[c]) see_polygon(p);
   }
 
   void flood(std::uint32_t start) {
@@ -74,6 +124,12 @@ class Flow {
   }
 
   static bool survives(Winding w, const std::vector<Plane>& planes) {
+    // Most polygons fail wholly behind one plane: find that without clipping (no allocation), then clip.
+    for (const auto& p : planes) {
+      bool any = false;
+      for (const auto& v : w) any = any || p.distance(v) >= -kPlaneEpsilon;
+      if (!any) return false;
+    }
     for (const auto& p : planes) {
       w = clip_front(w, p);
       if (w.empty()) return false;
@@ -89,18 +145,18 @@ class Flow {
     if (!pass) {
       mark_all(cell);  // the cell just beyond the first portal: anything in it may be seen
     } else {
-      seen_cell_[cell] = 1;
+      see_cell(cell);
       separating_planes(source, *pass, false, seps);
       separating_planes(*pass, source, true, seps);
       std::vector<Plane> test = seps;
       test.push_back(*pass_plane);
       test.push_back(source_plane_);
       for (const auto p : part_.cell_polygons[cell])
-        if (!seen_poly_[p] && survives(polys_[p].hull, test)) seen_poly_[p] = 1;
+        if (!seen_poly_[p] && survives(polys_[p].hull, test)) see_polygon(p);
     }
     on_stack_[cell] = 1;
     for (const auto& d : out_[cell]) {
-      if (on_stack_[d.to]) continue;
+      if (on_stack_[d.to] || all_done(d.beyond)) continue;
       // The source must lie behind the next portal to see through it.
       const Winding next_source = clip_front(source, d.plane.flipped());
       if (next_source.empty()) continue;
@@ -121,6 +177,9 @@ class Flow {
   std::uint64_t budget_;
   std::vector<std::vector<Directed>> out_;
   std::vector<char> seen_cell_, seen_poly_, on_stack_;
+  std::vector<std::vector<std::uint32_t>> cells_of_polygon_;
+  std::vector<std::uint32_t> unseen_in_cell_;
+  std::vector<std::uint64_t> done_;
   Plane source_plane_;
   std::uint64_t steps_ = 0;
 };

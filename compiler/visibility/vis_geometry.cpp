@@ -18,6 +18,14 @@ bool Box::overlaps(const Box& o, double tol) const {
   return true;
 }
 
+Plane axial_plane(int axis, double coord, double sign) {
+  Plane p;
+  p.n = model::Vec3{0.0};
+  p.n[axis] = sign > 0.0 ? 1.0 : -1.0;
+  p.d = -p.n[axis] * coord;
+  return p;
+}
+
 Winding clip_front(const Winding& w, const Plane& p) {
   if (w.empty()) return {};
   std::vector<double> d(w.size());

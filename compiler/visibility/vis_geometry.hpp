@@ -36,6 +36,10 @@ struct Plane {
   [[nodiscard]] Plane flipped() const { return {-n, -d}; }
 };
 
+// The plane p[axis] = coord with its normal along +axis (sign > 0) or -axis (otherwise). Use this rather than
+// setting n[axis] on a default Plane, whose normal is +z.
+[[nodiscard]] Plane axial_plane(int axis, double coord, double sign);
+
 using Winding = std::vector<model::Vec3>;  // convex, planar
 
 // Keeps the part of `w` on the front side of `p` (distance >= -kPlaneEpsilon); points within epsilon count
