@@ -125,6 +125,7 @@ int verify(const VerifyArgs& args) {
       std::printf("cell %4u: PVS %6llu exact %6llu missed %llu", row.cell,
                   static_cast<unsigned long long>(row.pvs), static_cast<unsigned long long>(row.exact),
                   static_cast<unsigned long long>(row.missed));
+      if (views[row.cell].no_free_space) std::printf(" (no open space found: viewpoints anywhere)");
       // Name the polygons behind missed pixels, with where they are, to find the cause.
       for (const auto id : views[row.cell].ids)
         if (row.missed && !std::binary_search(pvs[row.cell].begin(), pvs[row.cell].end(), id)) {

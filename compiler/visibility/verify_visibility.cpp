@@ -12,6 +12,8 @@ namespace {
 
 // Viewpoints keep this far (metres) inside their cell, so the tree puts them in it and not on a face.
 constexpr double kInset = 1e-3;
+// Random draws per viewpoint to find one in open space before the cell is looked at from anywhere.
+constexpr int kFreeSpaceTries = 64;
 
 // Cube face f: forward, right, up (right x up = forward, the usual cube map frames).
 void face_frame(int f, model::Vec3& fwd, model::Vec3& right, model::Vec3& up) {
@@ -84,17 +86,55 @@ CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index) cons
   std::vector<char> seen(glass_.size(), 0);
   std::mt19937_64 rng(options_.seed * 0x9E3779B97F4A7C15ull + cell_index);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int i = 0; i < options_.viewpoints; ++i)
-    cube(inset_point(cell, {u(rng), u(rng), u(rng)}), options_.resolution, &v, seen);
+  auto usable = [&](const model::Vec3& p) { return !options_.free_space_only || in_free_space(p); };
+  for (int i = 0; i < options_.viewpoints; ++i) {
+    // Up to kFreeSpaceTries draws for a point in open space; a cell with none (all solid, or a model
+    // without closed rooms) is still looked at, from anywhere in it, and reported.
+    model::Vec3 eye = inset_point(cell, {u(rng), u(rng), u(rng)});
+    int tries = 1;
+    while (!v.no_free_space && !usable(eye) && tries < kFreeSpaceTries) {
+      eye = inset_point(cell, {u(rng), u(rng), u(rng)});
+      ++tries;
+    }
+    if (tries == kFreeSpaceTries && !usable(eye)) v.no_free_space = true;
+    cube(eye, options_.resolution, &v, seen);
+    ++v.viewpoints;
+  }
   const int d = options_.dense;
   for (int i = 0; i < d; ++i)
     for (int j = 0; j < d; ++j)
-      for (int k = 0; k < d; ++k)
-        cube(inset_point(cell, {(i + 0.5) / d, (j + 0.5) / d, (k + 0.5) / d}), options_.dense_resolution,
-             nullptr, seen);
+      for (int k = 0; k < d; ++k) {
+        const model::Vec3 eye = inset_point(cell, {(i + 0.5) / d, (j + 0.5) / d, (k + 0.5) / d});
+        if (v.no_free_space || usable(eye)) cube(eye, options_.dense_resolution, nullptr, seen);
+      }
   for (std::uint32_t p = 0; p < seen.size(); ++p)
     if (seen[p]) v.exact.push_back(p);
   return v;
+}
+
+bool VisibilityJudge::in_free_space(const model::Vec3& p) const {
+  int front = 0, back = 0;
+  for (int k = 0; k < 14; ++k) {
+    Ray ray;
+    ray.origin = p;
+    if (k < 6) {
+      ray.dir = model::Vec3{0.0};
+      ray.dir[k / 2] = k % 2 ? -1.0 : 1.0;
+    } else {
+      ray.dir = {k & 1 ? -1.0 : 1.0, k & 2 ? -1.0 : 1.0, k & 4 ? -1.0 : 1.0};
+    }
+    // The first opaque polygon on the sight line: glass is passed through (it may face either way).
+    for (int layer = 0; layer <= kMaxGlassLayers; ++layer) {
+      const RayHit hit = caster_->closest(ray);
+      if (!hit.hit()) break;
+      if (!glass_[hit.polygon]) {
+        (hit.front ? front : back) += 1;
+        break;
+      }
+      ray.tmin = hit.t + self_hit_tmin(ray.dir);
+    }
+  }
+  return front > back;
 }
 
 std::uint64_t VisibilityJudge::missed(const CellViews& views, const std::vector<std::uint32_t>& pvs) const {

@@ -22,10 +22,14 @@ struct VerifyOptions {
   std::string ray_caster = "axial";
   unsigned threads = 0;
   std::uint64_t seed = 7;
+  // Viewpoints only where a walker can stand: in open space, not inside a solid or outside the model.
+  bool free_space_only = true;
 };
 
 // What the sight lines from a cell's viewpoints met: per pixel the ids along it (glass, then the stop).
 struct CellViews {
+  int viewpoints = 0;  // random viewpoints looked from (in free space, or anywhere when the cell has none)
+  bool no_free_space = false;  // no free-space point found in the cell: viewpoints anywhere in it
   std::vector<std::uint32_t> ids;
   std::vector<std::uint32_t> offsets{0};  // pixel p's ids: ids[offsets[p] .. offsets[p+1])
   std::vector<std::uint32_t> exact;       // union over the dense viewpoints and these, sorted
@@ -36,6 +40,10 @@ class VisibilityJudge {
   VisibilityJudge(std::span<const model::VertexRecord> vertices, std::span<const std::uint32_t> indices,
                   std::span<const model::PolygonRecord> polygons, const VerifyOptions& options);
   [[nodiscard]] CellViews views(const Box& cell, std::uint32_t cell_index) const;
+  // Whether `p` lies in open space: of 14 sight lines (axes and cube diagonals), more meet the front of a
+  // polygon than its back. Inside a solid, in a thick wall or outside a closed model, the first polygons
+  // met are seen from behind. Glass and sight lines that leave the model count for neither.
+  [[nodiscard]] bool in_free_space(const model::Vec3& p) const;
   // Pixels of `views` whose sight line meets a polygon not in `pvs` (sorted ids).
   [[nodiscard]] std::uint64_t missed(const CellViews& views, const std::vector<std::uint32_t>& pvs) const;
   [[nodiscard]] std::size_t polygon_count() const { return glass_.size(); }
