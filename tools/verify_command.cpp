@@ -171,6 +171,9 @@ void add_verify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", args->options.threads, "Threads (0: all cores)");
   cmd->add_option("--sweep", args->sweep, "Sweep PVS methods and sample counts; write CSV here");
   cmd->add_flag("-q,--quiet", args->quiet, "No per-cell lines");
+  cmd->add_flag(
+      "--anywhere{false}", args->options.free_space_only,
+      "Viewpoints anywhere in a cell, also inside solids and outside the model (default: open space)");
   cmd->callback([args, &exit_code] { exit_code = verify(*args); });
 }
 
