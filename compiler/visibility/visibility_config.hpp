@@ -8,9 +8,10 @@ namespace walk::compiler {
 
 enum class PvsMethod {
   Sampled,       // point sampling with the ray caster: fast, may miss polygons
-  Conservative,  // portal flow with separating planes; every polygon of every cell it reaches (the default)
-  Combined,      // the flow's planes also test each polygon, united with the sampled set: tighter, but it
-                 // still misses a few pixels on two shared models (docs/VISIBILITY.md): not yet conservative
+  Conservative,  // portal flow with separating planes; every polygon of every cell it reaches
+  Combined,      // the default: the flow's planes also test each polygon (still conservative: a polygon is
+                 // dropped only when no line through the portal sequence can reach its hull), united with
+                 // the sampled set (a guard against sight lines through cracks the portals do not model)
 };
 
 [[nodiscard]] const char* pvs_method_name(PvsMethod m);
@@ -26,7 +27,7 @@ struct VisibilityConfig {
   double threshold = 0.6;
   int max_depth = 16;          // tree depth limit
   double min_cell_size = 0.5;  // metres: no cell thinner than this (keeps wall slabs out of the tree)
-  PvsMethod method = PvsMethod::Conservative;
+  PvsMethod method = PvsMethod::Combined;
   int sample_points = 32;                 // sampled PVS: points per cell (half inside, half on its portals)
   int rays_per_point = 256;               // sampled PVS: directions per point
   std::uint64_t flow_budget = 2'000'000;  // portal-flow steps per cell before falling back to a flood
