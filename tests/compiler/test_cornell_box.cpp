@@ -33,7 +33,9 @@ TEST(CornellBox, MeasuredDataLoadsWithInwardFacingRoom) {
   for (const auto& p : set.patches) {
     const auto& s = box.surfaces[p.polygon];
     const model::Vec3 c = (set.vertices[p.v[0]] + set.vertices[p.v[1]] + set.vertices[p.v[2]]) / 3.0;
-    if (s.name.find("block") == std::string::npos) EXPECT_GT(glm::dot(centre - c, p.normal), 0.0) << s.name;
+    if (s.name.find("block") == std::string::npos) {
+      EXPECT_GT(glm::dot(centre - c, p.normal), 0.0) << s.name;
+    }
   }
   EXPECT_EQ(emitters.size(), 2u);
 }

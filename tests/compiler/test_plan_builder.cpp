@@ -65,9 +65,15 @@ TEST(PlanBuilder, TwoRoomsDoorwaysAndAWindow) {
   EXPECT_EQ(roles[model::Role::Glass], 2);
   for (const auto& p : m.polygons) {
     const Vec3 n = polygon_normal(p.vertices);
-    if (p.name == "floor" || p.name == "threshold") EXPECT_GT(n.z, 0.999);
-    if (p.name == "ceiling" || p.name == "lintel") EXPECT_LT(n.z, -0.999);
-    if (p.name == "lintel") EXPECT_NEAR(p.vertices[0].z, 2.0, 1e-12);
+    if (p.name == "floor" || p.name == "threshold") {
+      EXPECT_GT(n.z, 0.999);
+    }
+    if (p.name == "ceiling" || p.name == "lintel") {
+      EXPECT_LT(n.z, -0.999);
+    }
+    if (p.name == "lintel") {
+      EXPECT_NEAR(p.vertices[0].z, 2.0, 1e-12);
+    }
     if (p.role == model::Role::Opening) {
       const double a = area(p);  // door width x door height: 0.9 m inner door, 1.0 m entrance
       EXPECT_TRUE(std::abs(a - 0.9 * 2.0) < 1e-9 || std::abs(a - 1.0 * 2.0) < 1e-9) << a;
@@ -78,10 +84,12 @@ TEST(PlanBuilder, TwoRoomsDoorwaysAndAWindow) {
   for (const auto& p : m.polygons) {
     if (p.name != "wall") continue;
     const Vec3 n = polygon_normal(p.vertices);
-    if (std::abs(p.vertices[0].x - 4.1) < 1e-9 && std::abs(p.vertices[1].x - 4.1) < 1e-9)
+    if (std::abs(p.vertices[0].x - 4.1) < 1e-9 && std::abs(p.vertices[1].x - 4.1) < 1e-9) {
       EXPECT_LT(n.x, -0.999);
-    if (std::abs(p.vertices[0].x - 4.3) < 1e-9 && std::abs(p.vertices[1].x - 4.3) < 1e-9)
+    }
+    if (std::abs(p.vertices[0].x - 4.3) < 1e-9 && std::abs(p.vertices[1].x - 4.3) < 1e-9) {
       EXPECT_GT(n.x, 0.999);
+    }
   }
   const model::Bounds b = bounds_of(m);
   EXPECT_NEAR(b.max.x, 8.4, 1e-12);

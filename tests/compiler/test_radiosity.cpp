@@ -211,8 +211,9 @@ TEST(Radiosity, SpotLightsOnlyItsConeAndKeepsItsPower) {
     const auto& p = set.patches[i];
     if (p.normal.z < 0.5) continue;
     const Vec3 c = (set.vertices[p.v[0]] + set.vertices[p.v[1]] + set.vertices[p.v[2]]) / 3.0;
-    if (std::hypot(c.x, c.y) > footprint)
+    if (std::hypot(c.x, c.y) > footprint) {
       EXPECT_EQ(r.radiosity[i * 3], 0.0) << "patch " << i << " outside the cone";
+    }
     lit += r.radiosity[i * 3] > 0.0;
   }
   EXPECT_GT(lit, 4u);

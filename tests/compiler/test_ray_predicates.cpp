@@ -244,7 +244,9 @@ TEST(RayCasterInterface, FactoryNamesAndErrors) {
   EXPECT_EQ(names[0], "axial");
   EXPECT_EQ(std::find(names.begin(), names.end(), "embree") != names.end(), embree_available());
   EXPECT_THROW((void)make_ray_caster("optix", room()), Error);
-  if (!embree_available()) EXPECT_THROW((void)make_ray_caster("embree", room()), Error);
+  if (!embree_available()) {
+    EXPECT_THROW((void)make_ray_caster("embree", room()), Error);
+  }
   for (const auto& name : names) {
     const auto c = make_ray_caster(name, room());
     EXPECT_EQ(c->name(), name);
