@@ -138,9 +138,17 @@ Partition build_partition(const std::vector<VisPolygon>& polygons, const Visibil
     back_box.max[axis] = c;
     std::vector<std::uint32_t> front_ids, back_ids;
     for (const auto id : ids) {
-      // Polygons touching a cell (their plane on its face included) belong to it.
-      if (polygons[id].box.max[axis] >= c - kSideTolerance) front_ids.push_back(id);
-      if (polygons[id].box.min[axis] <= c + kSideTolerance) back_ids.push_back(id);
+      // A polygon belongs to each side it reaches into. One that only touches the plane along an edge (a
+      // ground-floor wall under the upper storey's floor) belongs to its own side alone: listing it above
+      // too put every wall below into the PVS of every cell that sees the storey above. One lying in the
+      // plane belongs to both sides: seen from behind it is still seen (single-sided walls, back-face
+      // culling off).
+      const VisPolygon& p = polygons[id];
+      const bool reaches_front = p.box.max[axis] > c + kSideTolerance;
+      const bool reaches_back = p.box.min[axis] < c - kSideTolerance;
+      const bool in_plane = !reaches_front && !reaches_back;
+      if (reaches_front || in_plane) front_ids.push_back(id);
+      if (reaches_back || in_plane) back_ids.push_back(id);
     }
     ids.clear();
     ids.shrink_to_fit();

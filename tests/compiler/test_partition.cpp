@@ -1,6 +1,8 @@
 // Airey's partition priority and the subdivision it drives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "compiler/partition/partition.hpp"
 #include "test_visibility_util.hpp"
 
@@ -79,6 +81,32 @@ TEST(Partition, SplitsAtTheDividingWallIntoTwoCells) {
     const auto& b = part.cells[c];
     EXPECT_EQ(locate(part.nodes, (b.min + b.max) * 0.5), c);
   }
+}
+
+// Which cells list a polygon: those it reaches into, and both for one lying in the splitting plane; a polygon
+// that only touches the plane along an edge stays on its own side (it cannot be seen from the other).
+TEST(Partition, PolygonsTouchingTheSplitAlongAnEdgeStayOnTheirSide) {
+  MiniBuilding m = two_rooms(false);
+  const auto shelf = m.rect(2, 1.0, 2, 4, 1, 3);     // horizontal, x 2..4: its edge x = 4 is on the split
+  const auto picture = m.rect(1, 0.01, 1, 2, 5, 7);  // y = 0.01, x 5..7: wholly in the second room
+  const auto across = m.rect(2, 0.5, 3, 5, 1, 3);    // horizontal, x 3..5: reaches into both
+  const auto p = polys(m);
+  const Partition part = build_partition(p, VisibilityConfig{});
+  ASSERT_EQ(part.cells.size(), 2u);
+  const std::uint32_t first = locate(part.nodes, {1, 1, 1}), second = 1 - first;
+  auto lists = [&](std::uint32_t cell, std::uint32_t polygon) {
+    const auto& ids = part.cell_polygons[cell];
+    return std::find(ids.begin(), ids.end(), polygon) != ids.end();
+  };
+  EXPECT_TRUE(lists(first, shelf));
+  EXPECT_FALSE(lists(second, shelf)) << "touches x = 4 along an edge only";
+  EXPECT_FALSE(lists(first, picture));
+  EXPECT_TRUE(lists(second, picture));
+  EXPECT_TRUE(lists(first, across) && lists(second, across));
+  std::uint32_t wall = 0;  // the dividing wall lies in the plane: both rooms see it
+  for (std::uint32_t i = 0; i < p.size(); ++i)
+    if (p[i].axis == 0 && p[i].coord == 4.0) wall = i;
+  EXPECT_TRUE(lists(first, wall) && lists(second, wall));
 }
 
 TEST(Partition, ThresholdAndDepthStopTheRecursion) {
