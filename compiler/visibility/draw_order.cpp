@@ -61,6 +61,19 @@ DrawOrderCounts order_for_cells(model::BundleContents& out) {
   for (std::size_t c = 0; c < cells; ++c)
     for (std::uint32_t k = out.cells[c].pvs_first; k < out.cells[c].pvs_first + out.cells[c].pvs_count; ++k)
       member[out.pvs[k] * words + c / 64] |= std::uint64_t(1) << (63 - c % 64);
+  // Sorted in reflected Gray-code order rather than plainly: neighbours in that order tend to differ in one
+  // cell, so a cell's polygons break into fewer runs (house at 21 cells: 566 ranges in id order, 193 sorted
+  // plainly, 179 in Gray order). A key's Gray rank is the prefix XOR of its membership bits.
+  for (std::size_t p = 0; p < n; ++p) {
+    std::uint64_t carry = 0;
+    for (std::size_t w = 0; w < words; ++w) {
+      std::uint64_t x = member[p * words + w];
+      for (int shift = 1; shift < 64; shift <<= 1) x ^= x >> shift;  // prefix XOR from the top bit down
+      if (carry) x = ~x;
+      carry = x & 1;
+      member[p * words + w] = x;
+    }
+  }
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {

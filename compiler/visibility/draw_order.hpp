@@ -17,8 +17,8 @@ struct DrawOrderCounts {
 // Ranges the renderer would draw for every cell's PVS with the bundle as it is.
 [[nodiscard]] std::uint64_t count_draw_ranges(const model::BundleContents& bundle);
 
-// Sorts polygons by the set of cells whose PVS holds them (glass last, as it is drawn apart), cells in tree
-// order, and rewrites INDX and CIDX in that order. Needs out.cells and out.pvs filled.
+// Sorts polygons by the set of cells whose PVS holds them, in Gray-code order (glass last, as it is drawn
+// apart; cells in tree order), and rewrites INDX and CIDX in that order. Needs out.cells and out.pvs filled.
 DrawOrderCounts order_for_cells(model::BundleContents& out);
 
 }  // namespace walk::compiler
