@@ -12,10 +12,12 @@
 
 namespace walk::compiler {
 
-// Weld distance as a fraction of the model's bounding-box diagonal: 1e-7 welds corners within 10 um in a
-// 100 m building (EnergyPlus prints 10 um steps: only identical corners merge) and within 0.2 um in the
-// 2 m Cornell box; far below any real feature, far above double round-off at 1e6 m (1e-10 m).
-inline constexpr double kWeldRelative = 1e-7;
+// Weld distance as a fraction of the model's bounding-box diagonal: 1e-6 welds corners within 20 um in the
+// 20 m house, 140 um in a 100 m building, 2 um in the 2 m Cornell box; far below any real feature, far above
+// double round-off at 1e6 m (1e-10 m). EnergyPlus prints 10 um steps, so one wall's corner can sit 10 um
+// from its neighbour's: 1e-7 (2 um in the house) left such 10 um cracks open, and a sight line through one
+// of them was the one pixel the house's full-size PVS check missed.
+inline constexpr double kWeldRelative = 1e-6;
 // A face is non-planar when a corner lies further than this fraction of its size (largest bounding-box
 // side) off its best plane: 1e-3 is 1 mm on a 1 m quad; the Cornell box's red wall (3.2 mm on 0.55 m) is
 // above it and is split, EnergyPlus faces (5 decimals) are below it.
