@@ -178,7 +178,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     StageTimer t(stages, "cleanup");
     append_imported_materials(model, config, imported);
     const std::size_t before = model.polygons.size();
-    const CleanupStats s = clean_up(model);
+    const CleanupStats s = clean_up(model, config.weld_metres);
     t.done(before, model.polygons.size(), s.summary());
   }
   {

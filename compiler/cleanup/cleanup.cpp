@@ -193,11 +193,11 @@ std::string CleanupStats::summary() const {
          (planes_unchecked ? " (" + std::to_string(planes_unchecked) + " crowded planes unchecked)" : "");
 }
 
-CleanupStats clean_up(model::Model& model) {
+CleanupStats clean_up(model::Model& model, double weld_metres) {
   CleanupStats stats;
   const model::Bounds b = bounds_of(model);
   const double diagonal = b.empty() ? 0.0 : glm::length(b.size());
-  const double tol = std::max(kMinWeld, diagonal * kWeldRelative);
+  const double tol = weld_metres > 0.0 ? weld_metres : std::max(kMinWeld, diagonal * kWeldRelative);
   stats.weld_tolerance = tol;
   stats.vertices_welded = weld(model, tol);
   std::vector<model::Polygon> kept;

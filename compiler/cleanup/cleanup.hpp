@@ -12,12 +12,13 @@
 
 namespace walk::compiler {
 
-// Weld distance as a fraction of the model's bounding-box diagonal: 1e-6 welds corners within 20 um in the
-// 20 m house, 140 um in a 100 m building, 2 um in the 2 m Cornell box; far below any real feature, far above
-// double round-off at 1e6 m (1e-10 m). EnergyPlus prints 10 um steps, so one wall's corner can sit 10 um
-// from its neighbour's: 1e-7 (2 um in the house) left such 10 um cracks open, and a sight line through one
-// of them was the one pixel the house's full-size PVS check missed.
-inline constexpr double kWeldRelative = 1e-6;
+// Weld distance as a fraction of the model's bounding-box diagonal: 1e-7 welds corners within 10 um in a
+// 100 m building and within 0.2 um in the 2 m Cornell box; far below any real feature, far above double
+// round-off at 1e6 m (1e-10 m). A file printed more coarsely than that needs the scene's `[model] weld`:
+// EnergyPlus prints 10 um steps, so one wall's corner can sit 10 um from its neighbour's and leave a crack
+// that sight lines pass through (the house's full-size PVS check saw one pixel through one). 1e-6 would
+// close those everywhere but drops a quarter of the finely tessellated conference room's faces.
+inline constexpr double kWeldRelative = 1e-7;
 // A face is non-planar when a corner lies further than this fraction of its size (largest bounding-box
 // side) off its best plane: 1e-3 is 1 mm on a 1 m quad; the Cornell box's red wall (3.2 mm on 0.55 m) is
 // above it and is split, EnergyPlus faces (5 decimals) are below it.
@@ -38,6 +39,7 @@ struct CleanupStats {
   [[nodiscard]] std::string summary() const;
 };
 
-CleanupStats clean_up(model::Model& model);
+// `weld_metres`: the scene's weld distance in metres, or 0 for kWeldRelative of the diagonal.
+CleanupStats clean_up(model::Model& model, double weld_metres = 0.0);
 
 }  // namespace walk::compiler

@@ -45,7 +45,12 @@ constexpr const char* kFormats[] = {"dxf", "plan", "map", "obj", "gltf", "glb",
 void read_model(const TomlTable& root, SceneConfig& cfg) {
   const auto model = root.table("model");
   if (!model) root.fail("model", "missing [model] table with at least `file = \"building.dxf\"`");
-  model->only({"file", "format", "units", "scale", "up", "faces"});
+  model->only({"file", "format", "units", "scale", "up", "faces", "weld"});
+  if (model->has("weld")) {
+    cfg.weld_metres = positive(*model, "weld", 0.0);
+    if (cfg.weld_metres > 0.01)
+      model->fail("weld", "at most 0.01 (metres): a weld that large merges real corners, not printing noise");
+  }
   const auto file = model->string("file");
   if (!file) model->fail("file", "missing: name the building model to import");
   fs::path p(*file);
@@ -252,8 +257,9 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
   t->only({"w_occlusion", "w_balance", "w_split", "threshold", "max_depth", "min_cell_size", "method",
            "sample_points", "rays_per_point", "flow_budget", "ray_caster"});
   auto& v = cfg.visibility;
-  for (const auto& [key, field] : {std::pair{"w_occlusion", &v.w_occlusion}, std::pair{"w_balance", &v.w_balance},
-                                   std::pair{"w_split", &v.w_split}, std::pair{"threshold", &v.threshold}}) {
+  for (const auto& [key, field] :
+       {std::pair{"w_occlusion", &v.w_occlusion}, std::pair{"w_balance", &v.w_balance},
+        std::pair{"w_split", &v.w_split}, std::pair{"threshold", &v.threshold}}) {
     *field = t->number(key).value_or(*field);
     if (!(*field >= 0.0 && *field <= 1.0)) t->fail(key, "must be between 0 and 1");
   }

@@ -61,6 +61,7 @@ struct SceneConfig {
   double metres_per_unit = 1.0;
   bool units_given = false;  // `units` or `scale` set; otherwise a DXF's $INSUNITS decides
   bool y_up = false;         // the file's y axis is up (`up = "y"`, the default for meshes); z is up inside
+  double weld_metres = 0.0;  // [model] weld: corners closer than this merge; 0: relative to the model's size
   PlanOptions plan;          // [plan]: how a 2D floor plan becomes 3D
   bool faces_point_outward = false;  // true: flip every face so it faces into its room (EnergyPlus)
   std::vector<FaceRule> rules;
@@ -71,7 +72,7 @@ struct SceneConfig {
   std::vector<CircuitRule> circuits;
   LightingConfig lighting;
   VisibilityConfig visibility;  // [visibility]: cells, portals, PVS
-  std::string text;  // the file's bytes, part of the scene hash
+  std::string text;             // the file's bytes, part of the scene hash
 };
 
 // Throws walk::Error naming the file, the line and the key for any problem.

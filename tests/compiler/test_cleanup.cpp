@@ -21,14 +21,21 @@ model::Polygon poly(std::vector<Vec3> v) {
 
 TEST(Cleanup, WeldsCornersWithinToleranceRelativeToModelSize) {
   model::Model m;
-  // A 100 m model: weld distance 1e-6 * diagonal ~ 141 um. Corners 50 um apart merge, 1 mm apart do not.
+  // A 100 m model: weld distance 1e-7 * diagonal ~ 14 um. Corners 5 um apart merge, 1 mm apart do not.
   m.polygons.push_back(poly({{0, 0, 0}, {100, 0, 0}, {100, 100, 0}}));
-  m.polygons.push_back(poly({{0, 0, 5e-5}, {100, 100, 0}, {0, 100, 1e-3}}));
+  m.polygons.push_back(poly({{0, 0, 5e-6}, {100, 100, 0}, {0, 100, 1e-3}}));
+  model::Model coarse = m;
+  coarse.polygons[1].vertices[0].z = 2e-5;  // 20 um: the scene's weld of 30 um (printing noise) merges it
   const CleanupStats s = clean_up(m);
-  EXPECT_NEAR(s.weld_tolerance, 1e-6 * std::sqrt(2.0 * 100 * 100 + 1e-6), 1e-12);
+  EXPECT_NEAR(s.weld_tolerance, 1e-7 * std::sqrt(2.0 * 100 * 100 + 1e-6), 1e-12);
   EXPECT_EQ(s.vertices_welded, 1u);
   EXPECT_EQ(m.polygons[1].vertices[0], Vec3(0, 0, 0));
   EXPECT_EQ(m.polygons[1].vertices[2], Vec3(0, 100, 1e-3));
+  const CleanupStats given = clean_up(coarse, 3e-5);
+  EXPECT_EQ(given.weld_tolerance, 3e-5);
+  EXPECT_EQ(given.vertices_welded, 1u);
+  EXPECT_EQ(coarse.polygons[1].vertices[0], Vec3(0, 0, 0));
+  EXPECT_EQ(coarse.polygons[1].vertices[2], Vec3(0, 100, 1e-3));
 }
 
 TEST(Cleanup, RemovesRepeatedAndCollinearCornersAndDropsZeroAreaFaces) {

@@ -74,6 +74,17 @@ TEST_F(SceneConfigTest, ModelPathIsResolvedAgainstTheConfigFolder) {
   EXPECT_DOUBLE_EQ(c.metres_per_unit, 0.0254);
 }
 
+TEST_F(SceneConfigTest, WeldIsMetresAndBounded) {
+  write("[model]\nfile = \"a.dxf\"\nweld = 2e-5\n");
+  EXPECT_DOUBLE_EQ(load_scene_config(path_).weld_metres, 2e-5);
+  write("[model]\nfile = \"a.dxf\"\n");
+  EXPECT_EQ(load_scene_config(path_).weld_metres, 0.0) << "default: relative to the model's size";
+  for (const char* bad : {"0", "-1e-5", "0.5"}) {
+    const std::string e = error_of(std::string("[model]\nfile = \"a.dxf\"\nweld = ") + bad + "\n");
+    EXPECT_NE(e.find("model.weld"), std::string::npos) << bad << ": " << e;
+  }
+}
+
 TEST_F(SceneConfigTest, ShippedScenesLoad) {
   for (const char* name : {"house.toml", "medium-office.toml"}) {
     const SceneConfig c = load_scene_config(std::string(WALK_SOURCE_DIR) + "/config/scenes/" + name);
