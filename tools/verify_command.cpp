@@ -20,7 +20,8 @@ using namespace walk::compiler;
 struct VerifyArgs {
   std::string bundle;
   VerifyOptions options;
-  std::string sweep;  // CSV path; empty: verify the bundle's own PVS
+  std::string sweep;                                // CSV path; empty: verify the bundle's own PVS
+  double threshold = VisibilityConfig{}.threshold;  // the sweep's partition threshold: the scene's
   bool quiet = false;
 };
 
@@ -94,12 +95,15 @@ int verify(const VerifyArgs& args) {
       cfg.sample_points = s.points;
       cfg.rays_per_point = s.rays;
       cfg.threads = args.options.threads;
+      cfg.threshold = args.threshold;
       const auto t = std::chrono::steady_clock::now();
       const VisibilityResult vr = compute_visibility(b->vertices(), b->indices(), b->polygons(), cfg);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
       if (vr.partition.cells.size() != views.size()) {
         std::fprintf(stderr,
-                     "walk verify: --sweep needs a bundle compiled with the default partition knobs\n");
+                     "walk verify: --sweep recomputed %zu cells where the bundle has %zu: pass the scene's "
+                     "[visibility] threshold with --threshold\n",
+                     vr.partition.cells.size(), views.size());
         std::fclose(csv);
         return 1;
       }
@@ -170,6 +174,8 @@ void add_verify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--ray-caster", args->options.ray_caster, "Ray caster for the ID images");
   cmd->add_option("--threads", args->options.threads, "Threads (0: all cores)");
   cmd->add_option("--sweep", args->sweep, "Sweep PVS methods and sample counts; write CSV here");
+  cmd->add_option("--threshold", args->threshold,
+                  "Partition threshold the sweep recomputes cells with: the scene's [visibility] threshold");
   cmd->add_flag("-q,--quiet", args->quiet, "No per-cell lines");
   cmd->add_flag(
       "--anywhere{false}", args->options.free_space_only,
