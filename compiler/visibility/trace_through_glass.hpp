@@ -11,8 +11,10 @@ namespace walk::compiler {
 // Sheets of glass one sight line passes at most (double glazing, two facades and some): beyond, it stops.
 inline constexpr int kMaxGlassLayers = 16;
 
-// Appends the polygon ids met by `ray` to `ids`; `glass[id]` says which polygons are see-through.
-void trace_through_glass(const RayCaster& caster, Ray ray, const std::vector<char>& glass,
-                         std::vector<std::uint32_t>& ids);
+// Appends the polygon ids met by `ray` to `ids`; `glass[id]` says which polygons are see-through. Returns
+// the last hit: the polygon the sight line stops at (or the last glass when it runs out of layers), or no hit
+// when it leaves the model.
+RayHit trace_through_glass(const RayCaster& caster, Ray ray, const std::vector<char>& glass,
+                           std::vector<std::uint32_t>& ids);
 
 }  // namespace walk::compiler

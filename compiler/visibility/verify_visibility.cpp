@@ -91,14 +91,13 @@ CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index) cons
     // Up to kFreeSpaceTries draws for a point in open space; a cell with none (all solid, or a model
     // without closed rooms) is still looked at, from anywhere in it, and reported.
     model::Vec3 eye = inset_point(cell, {u(rng), u(rng), u(rng)});
-    int tries = 1;
-    while (!v.no_free_space && !usable(eye) && tries < kFreeSpaceTries) {
+    bool open = v.no_free_space || usable(eye);
+    for (int tries = 1; !open && tries < kFreeSpaceTries; ++tries) {
       eye = inset_point(cell, {u(rng), u(rng), u(rng)});
-      ++tries;
+      open = usable(eye);
     }
-    if (tries == kFreeSpaceTries && !usable(eye)) v.no_free_space = true;
+    if (!open) v.no_free_space = true;
     cube(eye, options_.resolution, &v, seen);
-    ++v.viewpoints;
   }
   const int d = options_.dense;
   for (int i = 0; i < d; ++i)
@@ -124,15 +123,9 @@ bool VisibilityJudge::in_free_space(const model::Vec3& p) const {
       ray.dir = {k & 1 ? -1.0 : 1.0, k & 2 ? -1.0 : 1.0, k & 4 ? -1.0 : 1.0};
     }
     // The first opaque polygon on the sight line: glass is passed through (it may face either way).
-    for (int layer = 0; layer <= kMaxGlassLayers; ++layer) {
-      const RayHit hit = caster_->closest(ray);
-      if (!hit.hit()) break;
-      if (!glass_[hit.polygon]) {
-        (hit.front ? front : back) += 1;
-        break;
-      }
-      ray.tmin = hit.t + self_hit_tmin(ray.dir);
-    }
+    std::vector<std::uint32_t> ids;
+    const RayHit stop = trace_through_glass(*caster_, ray, glass_, ids);
+    if (stop.hit() && !glass_[stop.polygon]) (stop.front ? front : back) += 1;
   }
   return front > back;
 }

@@ -28,7 +28,6 @@ struct VerifyOptions {
 
 // What the sight lines from a cell's viewpoints met: per pixel the ids along it (glass, then the stop).
 struct CellViews {
-  int viewpoints = 0;  // random viewpoints looked from (in free space, or anywhere when the cell has none)
   bool no_free_space = false;  // no free-space point found in the cell: viewpoints anywhere in it
   std::vector<std::uint32_t> ids;
   std::vector<std::uint32_t> offsets{0};  // pixel p's ids: ids[offsets[p] .. offsets[p+1])
