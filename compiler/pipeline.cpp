@@ -240,8 +240,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     }
     std::size_t coarse_fallbacks = 0;
     auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire) {
-      const PolygonMesh mesh =
-          mesh_polygon(poly, poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid);
+      const double cell_size = poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid;
+      const PolygonMesh mesh = mesh_polygon(poly, cell_size);
       if (mesh.triangles.empty()) return;
       const auto id = static_cast<std::uint32_t>(out.polygons.size());
       const auto first_vertex = static_cast<std::uint32_t>(out.vertices.size());
@@ -284,8 +284,10 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       }
       // The coarse form drawn while moving: the polygon's fewest triangles over its diced vertices, or the
       // diced triangles themselves where no match is found (never seen on the shared models; counted).
-      const PolygonMesh coarse = mesh_polygon(poly, 0.0);
-      const auto coarse_local = coarse_triangles(mesh, coarse);
+      // A panel is meshed undiced already: its mesh is its coarse form.
+      const PolygonMesh coarse = cell_size > 0.0 ? mesh_polygon(poly, 0.0) : mesh;
+      const auto coarse_local =
+          cell_size > 0.0 ? coarse_triangles(mesh, coarse) : std::optional(mesh.triangles);
       if (!coarse_local) ++coarse_fallbacks;
       out.coarse_ranges.push_back({static_cast<std::uint32_t>(out.coarse_indices.size()), 0});
       for (std::uint32_t i : coarse_local ? *coarse_local : mesh.triangles)

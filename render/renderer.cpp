@@ -170,6 +170,14 @@ std::vector<float> polygon_light(const model::Bundle& bundle) {
   return out;
 }
 
+// One glMultiDrawElements over a batch's ranges of the bound VAO's index buffer.
+void draw_batch(const DrawBatch& batch) {
+  if (batch.empty()) return;
+  glMultiDrawElements(GL_TRIANGLES, batch.counts.data(), GL_UNSIGNED_INT,
+                      reinterpret_cast<const void* const*>(batch.byte_offsets.data()),
+                      GLsizei(batch.counts.size()));
+}
+
 bool same_view(const View& a, const View& b) {
   return a.eye == b.eye && a.forward == b.forward && a.up == b.up && a.fov_y_degrees == b.fov_y_degrees &&
          a.near_plane == b.near_plane && a.far_plane == b.far_plane;
@@ -453,13 +461,8 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glActiveTexture(GL_TEXTURE0);
     const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao : r.vao;
     glBindVertexArray(scene_vao);
-    auto draw_batch = [](const DrawBatch& batch) {
-      glMultiDrawElements(GL_TRIANGLES, batch.counts.data(), GL_UNSIGNED_INT,
-                          reinterpret_cast<const void* const*>(batch.byte_offsets.data()),
-                          GLsizei(batch.counts.size()));
-    };
     glUniform1f(r.u_opacity, 1.0f);
-    if (!list.opaque.empty()) draw_batch(list.opaque);
+    draw_batch(list.opaque);
     if (options.diagonals && r.shaded_vertices > 0) {
       // The subdivided quads, over their own quads (kept as a crack filler): pulled one depth step towards
       // the eye so they win wherever both cover a pixel. Drawn for every cell: they are few, and only
@@ -564,11 +567,7 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   // Flat light: the coarse form where the bundle has one.
   const bool coarse = !coarse_polygons.empty();
   glBindVertexArray(coarse ? coarse_vao : vao);
-  const DrawList& everything = list_for(FrameStats::kNoCell, coarse);
-  if (!everything.opaque.empty())
-    glMultiDrawElements(GL_TRIANGLES, everything.opaque.counts.data(), GL_UNSIGNED_INT,
-                        reinterpret_cast<const void* const*>(everything.opaque.byte_offsets.data()),
-                        GLsizei(everything.opaque.counts.size()));
+  draw_batch(list_for(FrameStats::kNoCell, coarse).opaque);
   glDisable(GL_CLIP_DISTANCE0);
   glUniform4f(u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
 
