@@ -65,11 +65,22 @@ std::string structure_detail(const RayCaster& c) {
   if (!a) return "";
   const auto& p = a->planes().stats();
   const auto& b = a->bsp().stats();
-  char buf[200];
+  const auto& k = a->planes().blocks().stats();
+  char buf[300];
   std::snprintf(
-      buf, sizeof buf, "axial %zu tris in %zu+%zu+%zu planes (%zu rects); bsp %zu tris %zu nodes depth %d",
-      p.triangles, p.planes[0], p.planes[1], p.planes[2], p.rectangles, b.triangles, b.nodes, b.depth);
+      buf, sizeof buf,
+      "axial %zu tris in %zu+%zu+%zu planes (%zu rects) over %zux%zux%zu blocks (%zu empty) with %zu "
+      "listings; bsp %zu tris %zu nodes depth %d",
+      p.triangles, p.planes[0], p.planes[1], p.planes[2], p.rectangles, k.blocks[0], k.blocks[1], k.blocks[2],
+      k.empty, k.entries, b.triangles, b.nodes, b.depth);
   return buf;
+}
+
+// A caster by name; "axial@B" is the axial structure with B blocks per element (for the block-size sweep).
+std::unique_ptr<RayCaster> make_caster(const std::string& name, const std::vector<compiler::Triangle>& tris) {
+  if (name.starts_with("axial@"))
+    return std::make_unique<compiler::AxialCaster>(tris, std::stod(name.substr(6)));
+  return compiler::make_ray_caster(name, tris);
 }
 
 int run_speed(const Options& opt) {
@@ -95,7 +106,7 @@ int run_speed(const Options& opt) {
     std::vector<Row> rows;
     for (const auto& cname : casters) {
       const auto t0 = Clock::now();
-      const auto caster = compiler::make_ray_caster(cname, model.triangles);
+      const auto caster = make_caster(cname, model.triangles);
       const double build = since(t0);
       const double mb = static_cast<double>(caster->memory_bytes()) / (1024.0 * 1024.0);
       for (const auto& [set, rays] : sets) {
@@ -166,7 +177,8 @@ void add_bench_rays_command(CLI::App& bench, int& exit_code) {
   rays->add_option("--models", opt->models,
                    "Comma-separated: house, office, tower, e1m1, dm1, conference, sibenik, cornell")
       ->capture_default_str();
-  rays->add_option("--casters", opt->casters, "Comma-separated: axial, bvh, brute, embree")
+  rays->add_option("--casters", opt->casters,
+                   "Comma-separated: axial, bvh, brute, embree; axial@B: axial with B blocks per element")
       ->capture_default_str();
   rays->add_option("--threads", opt->threads, "Comma-separated thread counts")->capture_default_str();
   rays->add_option("--rays", opt->rays, "Rays per set")->capture_default_str();

@@ -12,10 +12,10 @@ std::vector<std::uint32_t> not_taken(const std::vector<std::uint8_t>& taken) {
 
 }  // namespace
 
-AxialCaster::AxialCaster(std::span<const Triangle> triangles)
+AxialCaster::AxialCaster(std::span<const Triangle> triangles, double blocks_per_element)
     : local_(triangles),
       axial_(local_.triangles.size(), 0),
-      planes_(local_, axial_),
+      planes_(local_, axial_, blocks_per_element),
       bsp_(local_, not_taken(axial_)) {
   std::vector<std::uint8_t>().swap(axial_);
   bsp_first_ = bsp_.stats().triangles > planes_.stats().triangles;
@@ -32,11 +32,11 @@ RayHit AxialCaster::closest(const Ray& ray) const {
   const double tmin = std::max(ray.tmin, 0.0);
   const double tie = tie_tolerance(ray.dir);
   if (bsp_first_) {
-    if (!bsp_.empty()) bsp_.closest(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax, tie, best);
+    if (!bsp_.empty()) bsp_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
     planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
   } else {
     planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
-    if (!bsp_.empty()) bsp_.closest(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax, tie, best);
+    if (!bsp_.empty()) bsp_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
   }
   return best;
 }
@@ -45,9 +45,7 @@ bool AxialCaster::occluded(const Ray& ray) const {
   if (!valid_ray(ray)) return false;
   const model::Vec3 o = ray.origin - local_.centre;
   const double tmin = std::max(ray.tmin, 0.0);
-  const auto in_bsp = [&] {
-    return !bsp_.empty() && bsp_.occluded(ShearedRay(o, ray.dir), ray.dir, tmin, ray.tmax);
-  };
+  const auto in_bsp = [&] { return !bsp_.empty() && bsp_.occluded(o, ray.dir, tmin, ray.tmax); };
   if (bsp_first_) return in_bsp() || planes_.occluded(o, ray.dir, tmin, ray.tmax);
   return planes_.occluded(o, ray.dir, tmin, ray.tmax) || in_bsp();
 }

@@ -7,25 +7,12 @@
 namespace walk::compiler {
 namespace {
 
-// Grid cells per element in a plane: about two keeps the lists per cell short without many empty cells.
-constexpr double kCellsPerElement = 2.0;
-// Planes with this many elements or fewer keep one cell: testing them all is cheaper than a lookup.
-constexpr std::size_t kDirectList = 4;
-constexpr std::uint32_t kMaxGridSide = 1024;
 // Two right triangles whose diagonals' unit normals cancel to within this are complementary halves of
 // their common bounding rectangle (normals are unit vectors; 1e-12 is a few thousand ulp).
 constexpr double kOppositeEdge = 1e-12;
 
-// A plane joins the structure only when it holds at least this many polygons or this fraction of the model's
-// cross-section in polygon area: every ray crossing a plane's coordinate pays a step, so the many small
-// axial faces of a sculpted mesh (mouldings, furniture) are cheaper in the BSP. A building's walls and
-// floors pass easily (the house's smallest kept plane holds a door).
-constexpr std::size_t kPlaneMinElements = 32;
-constexpr double kPlaneMinAreaFraction = 0.01;
-
 struct Raw {
   double coord;
-  double area;
   std::uint32_t triangle;
   int edge_count = 0;
   double u0, u1, v0, v1;
@@ -35,40 +22,11 @@ struct Raw {
   bool merged_away = false;
 };
 
-std::uint32_t cell_of(double x, double x0, double inv, std::uint32_t n) {
-  const double f = (x - x0) * inv;
-  if (!(f > 0.0)) return 0;  // also NaN
-  return std::min(n - 1, static_cast<std::uint32_t>(std::min(f, 4.0e9)));
-}
-
-// The plane's own (u, v) axes for each axis k: (k + 1) % 3 and (k + 2) % 3.
-constexpr int kU[3] = {1, 2, 0};
-constexpr int kV[3] = {2, 0, 1};
-
-// First index whose coordinate is >= x (kUpper: > x), without branches: the walk does three of these per ray.
-template <bool kUpper>
-std::ptrdiff_t bound(const std::vector<double>& coords, double x) {
-  const double* base = coords.data();
-  std::size_t n = coords.size();
-  while (n > 1) {
-    const std::size_t half = n / 2;
-    base = (kUpper ? !(x < base[half]) : base[half] < x) ? base + half : base;
-    n -= half;
-  }
-  return (base - coords.data()) + ((kUpper ? !(x < *base) : *base < x) ? 1 : 0);
-}
-
 }  // namespace
 
-AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& taken) {
+AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& taken,
+                         double blocks_per_element) {
   std::vector<Raw> raw[3];
-  model::Bounds bounds;
-  for (const auto& t : lt.triangles) {
-    bounds.add(t.a);
-    bounds.add(t.b);
-    bounds.add(t.c);
-  }
-  const model::Vec3 extent = bounds.empty() ? model::Vec3(0.0) : bounds.size();
   for (std::uint32_t i = 0; i < lt.triangles.size(); ++i) {
     const Triangle& t = lt.triangles[i];
     int k = -1;
@@ -83,7 +41,6 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
     if (area2 == 0.0 || !std::isfinite(area2)) continue;  // degenerate: no ray can hit it
     Raw r{};
     r.coord = t.a[k];
-    r.area = 0.5 * std::abs(area2);
     r.triangle = i;
     r.polygon = t.polygon;
     r.sign = area2 > 0.0 ? 1 : -1;
@@ -106,22 +63,14 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
     raw[k].push_back(r);
   }
 
+  std::vector<PlaneBox> boxes;  // every element's extent, for the blocks
+  std::vector<Element> elements;
   for (int k = 0; k < 3; ++k) {
     auto& list = raw[k];
     std::stable_sort(list.begin(), list.end(), [](const Raw& a, const Raw& b) { return a.coord < b.coord; });
     for (std::size_t first = 0; first < list.size();) {
       std::size_t last = first;
       while (last < list.size() && list[last].coord == list[first].coord) ++last;
-      double area = 0.0;
-      for (std::size_t i = first; i < last; ++i) area += list[i].area;
-      const int u = (k + 1) % 3, v = (k + 2) % 3;
-      if (last - first < kPlaneMinElements && area < kPlaneMinAreaFraction * extent[u] * extent[v]) {
-        for (std::size_t i = first; i < last; ++i) taken[list[i].triangle] = 0;  // left to the BSP
-        ++stats_.planes_left;
-        first = last;
-        continue;
-      }
-
       // Two right triangles of one polygon on either side of their bounding rectangle's diagonal: one
       // rectangle, tested by its bounds alone.
       std::vector<std::size_t> halves;
@@ -145,142 +94,70 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
         ++h;
       }
 
-      struct {
-        double u0, u1, v0, v1, inv_du, inv_dv;
-        std::uint32_t nu, nv, cell_first;
-      } p{};
-      p.u0 = p.v0 = INFINITY;
-      p.u1 = p.v1 = -INFINITY;
-      std::vector<Element> elements;
       for (std::size_t i = first; i < last; ++i) {
         const Raw& r = list[i];
         ++stats_.triangles;
         if (r.merged_away) continue;
-        Element e{r.u0,
-                  r.u1,
-                  r.v0,
-                  r.v1,
-                  static_cast<std::uint32_t>(edges_.size()),
-                  static_cast<std::uint16_t>(r.edge_count),
-                  r.sign,
-                  r.triangle,
-                  r.polygon};
+        boxes.push_back({k, static_cast<std::uint32_t>(stats_.planes[k]),
+                         static_cast<std::uint32_t>(elements.size()), r.coord, r.u0, r.u1, r.v0, r.v1});
+        elements.push_back({r.u0, r.u1, r.v0, r.v1, static_cast<std::uint32_t>(edges_.size()),
+                            static_cast<std::uint16_t>(r.edge_count), r.sign, r.triangle, r.polygon});
         for (int j = 0; j < r.edge_count; ++j) edges_.push_back({r.nu[j], r.nv[j], r.c[j]});
-        elements.push_back(e);
-        p.u0 = std::min(p.u0, r.u0);
-        p.u1 = std::max(p.u1, r.u1);
-        p.v0 = std::min(p.v0, r.v0);
-        p.v1 = std::max(p.v1, r.v1);
       }
-      const std::size_t m = elements.size();
-      stats_.elements += m;
-      p.nu = p.nv = 1;
-      if (m > kDirectList) {
-        const double w = p.u1 - p.u0, h = p.v1 - p.v0, target = kCellsPerElement * static_cast<double>(m);
-        p.nu = static_cast<std::uint32_t>(
-            std::clamp(std::lround(std::sqrt(target * w / h)), 1L, static_cast<long>(kMaxGridSide)));
-        p.nv = static_cast<std::uint32_t>(
-            std::clamp(std::lround(target / p.nu), 1L, static_cast<long>(kMaxGridSide)));
-      }
-      p.inv_du = p.nu / (p.u1 - p.u0);
-      p.inv_dv = p.nv / (p.v1 - p.v0);
-      p.cell_first = static_cast<std::uint32_t>(cell_start_.size());
-      // Counting sort of the elements into the cells their bounds overlap (same rounding as the lookup).
-      const std::size_t cells = std::size_t{p.nu} * p.nv;
-      std::vector<std::uint32_t> count(cells + 1, 0);
-      auto each_cell = [&](const Element& e, auto&& fn) {
-        const std::uint32_t iu0 = cell_of(e.u0, p.u0, p.inv_du, p.nu),
-                            iu1 = cell_of(e.u1, p.u0, p.inv_du, p.nu);
-        const std::uint32_t iv0 = cell_of(e.v0, p.v0, p.inv_dv, p.nv),
-                            iv1 = cell_of(e.v1, p.v0, p.inv_dv, p.nv);
-        for (std::uint32_t iv = iv0; iv <= iv1; ++iv)
-          for (std::uint32_t iu = iu0; iu <= iu1; ++iu) fn(std::size_t{iv} * p.nu + iu);
-      };
-      for (const auto& e : elements) each_cell(e, [&](std::size_t c) { ++count[c + 1]; });
-      for (std::size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
-      const auto base = static_cast<std::uint32_t>(cell_elements_.size());
-      for (std::size_t c = 0; c <= cells; ++c) cell_start_.push_back(base + count[c]);
-      cell_elements_.resize(base + count[cells]);
-      for (const auto& e : elements)
-        each_cell(e, [&](std::size_t c) { cell_elements_[base + count[c]++] = e; });
-      stats_.cells += cells;
-
-      coords_[k].push_back(list[first].coord);
-      bounds_[k].push_back({list[first].coord, p.u0, p.u1, p.v0, p.v1});
-      grids_[k].push_back({p.inv_du, p.inv_dv, p.nu, p.nv, p.cell_first});
+      ++stats_.planes[k];
       first = last;
     }
-    stats_.planes[k] = bounds_[k].size();
   }
+  stats_.elements = elements.size();
+  blocks_ = PlaneBlocks(
+      boxes, std::max<std::size_t>(
+                 1, static_cast<std::size_t>(blocks_per_element * static_cast<double>(elements.size()))));
+  // Each block's elements copied in place: a crossing reads one contiguous run, with no index to chase (the
+  // walk is bound by memory latency on big buildings).
+  cell_elements_.reserve(blocks_.items().size());
+  for (const std::uint32_t i : blocks_.items()) cell_elements_.push_back(elements[i]);
   stats_.cell_entries = cell_elements_.size();
 }
 
 template <bool kAny>
 bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, double tmax, double tie,
                        RayHit* best) const {
-  // Per axis: the next plane ahead of the ray, its index step, and its ray parameter.
-  double next_t[3];
-  std::ptrdiff_t index[3], end[3], step[3];
-  double inv[3];
-  for (int k = 0; k < 3; ++k) {
-    next_t[k] = INFINITY;
-    index[k] = end[k] = 0;
-    step[k] = 0;
-    const auto& coords = coords_[k];
-    if (!(d[k] != 0.0) || coords.empty()) continue;  // parallel to this axis' planes (or NaN)
-    inv[k] = 1.0 / d[k];
-    const double start = o[k] + std::max(tmin, 0.0) * d[k];
-    if (d[k] > 0.0) {
-      index[k] = bound<false>(coords, start);
-      end[k] = static_cast<std::ptrdiff_t>(coords.size());
-      step[k] = 1;
-    } else {
-      index[k] = bound<true>(coords, start) - 1;
-      end[k] = -1;
-      step[k] = -1;
-    }
-    if (index[k] != end[k]) next_t[k] = (coords[index[k]] - o[k]) * inv[k];
-  }
   double limit = tmax;
-  for (;;) {
-    const int k =
-        next_t[0] <= next_t[1] ? (next_t[0] <= next_t[2] ? 0 : 2) : (next_t[1] <= next_t[2] ? 1 : 2);
-    const double t = next_t[k];
-    if (!(t < limit)) break;
-    const std::ptrdiff_t pi = index[k];
-    index[k] += step[k];
-    next_t[k] = index[k] != end[k] ? (bounds_[k][index[k]].coord - o[k]) * inv[k] : INFINITY;
-    if (!(t > tmin)) continue;
-
-    const PlaneBounds& b = bounds_[k][pi];
-    const int u = kU[k], v = kV[k];
-    const double pu = o[u] + t * d[u];
-    const double pv = o[v] + t * d[v];
-    if (pu < b.u0 || pu > b.u1 || pv < b.v0 || pv > b.v1) continue;
-    const PlaneGrid& p = grids_[k][pi];
-    const std::uint32_t cell =
-        p.cell_first + cell_of(pv, b.v0, p.inv_dv, p.nv) * p.nu + cell_of(pu, b.u0, p.inv_du, p.nu);
-    for (std::uint32_t c = cell_start_[cell]; c < cell_start_[cell + 1]; ++c) {
-      const Element& e = cell_elements_[c];
-      if (pu < e.u0 || pu > e.u1 || pv < e.v0 || pv > e.v1) continue;
-      bool inside = true;
-      for (std::uint32_t j = e.edge_first; j < e.edge_first + e.edge_count; ++j) {
-        const EdgeLine& l = edges_[j];
-        if (l.nu * pu + l.nv * pv + l.c < 0.0) {
-          inside = false;
-          break;
+  bool any = false;
+  blocks_.walk(
+      o, d, tmin, limit,
+      [&](int k, std::uint32_t first, std::uint32_t count, double t, double pu, double pv) {
+        for (std::uint32_t c = first; c < first + count; ++c) {
+          const Element& e = cell_elements_[c];
+          if (pu < e.u0 || pu > e.u1 || pv < e.v0 || pv > e.v1) continue;
+          bool inside = true;
+          for (std::uint32_t j = e.edge_first; j < e.edge_first + e.edge_count; ++j) {
+            const EdgeLine& l = edges_[j];
+            if (l.nu * pu + l.nv * pv + l.c < 0.0) {
+              inside = false;
+              break;
+            }
+          }
+          if (!inside) continue;
+          if constexpr (kAny) {
+            any = true;
+            return true;
+          } else {
+            const bool front = e.normal_sign * d[k] < 0.0;
+            if (better_hit(t, front, e.triangle, *best, tie)) {
+              *best = {t, e.triangle, e.polygon, front};
+              limit = std::min(tmax, t + tie);
+            }
+          }
         }
-      }
-      if (!inside) continue;
-      if constexpr (kAny) return true;
-      const bool front = e.normal_sign * d[k] < 0.0;
-      if (better_hit(t, front, e.triangle, *best, tie)) {
-        *best = {t, e.triangle, e.polygon, front};
-        limit = std::min(tmax, t + tie);
-      }
-    }
-  }
-  return false;
+        return false;
+      },
+      [&](std::uint32_t first, std::uint32_t end) {
+        const char* p = reinterpret_cast<const char*>(cell_elements_.data() + first);
+        const char* q = reinterpret_cast<const char*>(cell_elements_.data() + end);
+        for (int line = 0; line < 4 && p < q; ++line, p += 64) __builtin_prefetch(p);
+      });
+  return any;
 }
 
 void AxialPlanes::closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
@@ -295,12 +172,8 @@ bool AxialPlanes::occluded(const model::Vec3& origin, const model::Vec3& dir, do
 }
 
 std::size_t AxialPlanes::memory_bytes() const {
-  std::size_t bytes = cell_elements_.capacity() * sizeof(Element) + edges_.capacity() * sizeof(EdgeLine) +
-                      cell_start_.capacity() * sizeof(std::uint32_t);
-  for (int k = 0; k < 3; ++k)
-    bytes += coords_[k].capacity() * sizeof(double) + bounds_[k].capacity() * sizeof(PlaneBounds) +
-             grids_[k].capacity() * sizeof(PlaneGrid);
-  return bytes;
+  return cell_elements_.capacity() * sizeof(Element) + edges_.capacity() * sizeof(EdgeLine) +
+         blocks_.memory_bytes();
 }
 
 }  // namespace walk::compiler

@@ -1,9 +1,11 @@
 #pragma once
 // The paper's structure for axial polygons (Airey, Rohlf & Brooks 1990): triangles lying in a plane x = c,
 // y = c or z = c are grouped by plane, the planes of each axis are sorted by c, and a ray walks the three
-// sorted lists in merged order of ray parameter, testing only the polygons of each plane it reaches. Inside a
-// plane a uniform 2D grid over the plane's polygons turns "which of these thousands contain the point" into
-// one cell lookup and a few 2D tests.
+// sorted lists in merged order of ray parameter, testing only the polygons of each plane it reaches. The walk
+// runs block by block (PlaneBlocks): each block of a uniform 3D grid lists only the planes with polygons
+// inside it, so a ray skips the planes of rooms off to the side, and a plane's listing in a block holds only
+// its polygons there, so a plane with thousands of polygons costs one lookup (the blocks' cells are the
+// plane's 2D grid) and a few 2D tests.
 //
 // The 2D test is conservative by kEdgeSlack: a point within that distance outside a polygon's edge counts as
 // inside. The hit point in a plane is rounded (about 1e-13 m in a 1 km building), so without slack a ray
@@ -14,12 +16,18 @@
 #include <vector>
 
 #include "compiler/raycast/local_triangles.hpp"
+#include "compiler/raycast/plane_blocks.hpp"
 
 namespace walk::compiler {
 
 // How far outside its edges a polygon still counts as hit (1 nm: 1e4 times the rounding of a hit point in a
 // 1 km building, a millionth of a millimetre on a wall).
 inline constexpr double kEdgeSlack = 1e-9;
+
+// Blocks per element: fewer make long listings, more make rays step through many nearly empty blocks and
+// copy big polygons into many of them; 0.3 was fastest or within noise of it on every model in the sweep of
+// docs/RAYCAST.md (`walk bench rays --casters axial@0.15,axial@0.3,axial@0.6`).
+inline constexpr double kBlocksPerElement = 0.3;
 
 class AxialPlanes {
  public:
@@ -28,14 +36,13 @@ class AxialPlanes {
     std::size_t elements = 0;    // 2D elements after merging triangle pairs into rectangles
     std::size_t rectangles = 0;  // of which merged rectangles (no edge tests at all)
     std::size_t planes[3] = {0, 0, 0};
-    std::size_t planes_left = 0;  // small planes whose triangles were left to the BSP
-    std::size_t cells = 0;
-    std::size_t cell_entries = 0;  // element copies in all cells
+    std::size_t cell_entries = 0;  // element copies in all block listings
   };
 
-  // Takes the triangles whose three vertices share one coordinate exactly, in planes big enough to be worth a
-  // step of the walk; marks them in `taken`.
-  AxialPlanes(const LocalTriangles& triangles, std::vector<std::uint8_t>& taken);
+  // Takes the triangles whose three vertices share one coordinate exactly and marks them in `taken`; about
+  // `blocks_per_element` blocks per element (triangle or merged rectangle).
+  AxialPlanes(const LocalTriangles& triangles, std::vector<std::uint8_t>& taken,
+              double blocks_per_element = kBlocksPerElement);
 
   // Improves `best` with the closest axial hit in (tmin, min(tmax, best.t + tie)); origin is local.
   void closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
@@ -44,6 +51,7 @@ class AxialPlanes {
                               double tmax) const;
 
   [[nodiscard]] const Stats& stats() const { return stats_; }
+  [[nodiscard]] const PlaneBlocks& blocks() const { return blocks_; }
   [[nodiscard]] std::size_t memory_bytes() const;
 
  private:
@@ -58,29 +66,16 @@ class AxialPlanes {
   struct EdgeLine {  // inside when nu*u + nv*v + c >= 0; (nu, nv) unit length, c widened by kEdgeSlack
     double nu, nv, c;
   };
-  struct PlaneBounds {  // what every step of the walk reads, in one 40-byte record
-    double coord;
-    double u0, u1, v0, v1;  // bounds of its elements
-  };
-  struct PlaneGrid {           // read only when the point falls inside the bounds
-    double inv_du, inv_dv;     // cells per metre
-    std::uint32_t nu, nv;      // grid size
-    std::uint32_t cell_first;  // into cell_start_: nu*nv + 1 entries
-  };
-
   template <bool kAny>
   bool walk(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
             RayHit* best) const;
 
-  std::vector<double> coords_[3];  // sorted plane coordinates per axis, for the binary search
-  std::vector<PlaneBounds> bounds_[3];
-  std::vector<PlaneGrid> grids_[3];
   std::vector<EdgeLine> edges_;
-  std::vector<std::uint32_t> cell_start_;
-  // Each cell's elements copied in place: a lookup reads one contiguous run, with no index to chase (the
-  // walk is bound by memory latency on big buildings).
+  // Elements copied in place per block listing (PlaneBlocks::items order): a crossing reads one contiguous
+  // run, with no index to chase.
   std::vector<Element> cell_elements_;
   Stats stats_;
+  PlaneBlocks blocks_;
 };
 
 }  // namespace walk::compiler

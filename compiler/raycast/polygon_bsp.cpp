@@ -176,7 +176,7 @@ std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
 }
 
 template <bool kAny>
-bool PolygonBsp::search(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
+bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmin, double tmax, double tie,
                         RayHit* best) const {
   struct Entry {
     std::uint32_t node;
@@ -186,9 +186,14 @@ bool PolygonBsp::search(const ShearedRay& ray, const model::Vec3& dir, double tm
   int top = 0;
   double limit = tmax;
   if (!kAny && best->hit()) limit = std::min(limit, best->t + tie);
-  stack[top++] = {0, tmin, limit};
-  const model::Vec3& o = ray.origin;
   const model::Vec3 inv(1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z);
+  {
+    double t0 = tmin, t1 = limit;
+    if (!slab(nodes_[0].lo, nodes_[0].hi, o, inv, t0, t1)) return false;
+    stack[top++] = {0, t0, t1};
+  }
+  const ShearedRay ray(o, dir);
+  if (!ray.valid) return false;
   const auto& tris = tris_->triangles;
   while (top > 0) {
     const Entry e = stack[--top];
@@ -229,13 +234,13 @@ bool PolygonBsp::search(const ShearedRay& ray, const model::Vec3& dir, double tm
   return false;
 }
 
-void PolygonBsp::closest(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
-                         RayHit& best) const {
-  if (!nodes_.empty() && ray.valid) search<false>(ray, dir, tmin, tmax, tie, &best);
+void PolygonBsp::closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
+                         double tie, RayHit& best) const {
+  if (!nodes_.empty()) search<false>(origin, dir, tmin, tmax, tie, &best);
 }
 
-bool PolygonBsp::occluded(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax) const {
-  return !nodes_.empty() && ray.valid && search<true>(ray, dir, tmin, tmax, 0.0, nullptr);
+bool PolygonBsp::occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax) const {
+  return !nodes_.empty() && search<true>(origin, dir, tmin, tmax, 0.0, nullptr);
 }
 
 std::size_t PolygonBsp::memory_bytes() const {

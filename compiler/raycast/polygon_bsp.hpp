@@ -25,10 +25,12 @@ class PolygonBsp {
   // `triangles` must outlive the tree; `ids` are the triangles it holds.
   PolygonBsp(const LocalTriangles& triangles, std::vector<std::uint32_t> ids);
 
-  // Improves `best` with hits in (tmin, min(tmax, best.t + tie)); the ray is local.
-  void closest(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
+  // Improves `best` with hits in (tmin, min(tmax, best.t + tie)); the ray (origin, dir) is local. The
+  // triangle test's per-ray set-up is done only once the ray meets the tree's bounds.
+  void closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
                RayHit& best) const;
-  [[nodiscard]] bool occluded(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax) const;
+  [[nodiscard]] bool occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin,
+                              double tmax) const;
 
   [[nodiscard]] bool empty() const { return nodes_.empty(); }
   [[nodiscard]] const Stats& stats() const { return stats_; }
@@ -45,7 +47,7 @@ class PolygonBsp {
 
   std::uint32_t build(std::vector<std::uint32_t>& ids, int depth);
   template <bool kAny>
-  bool search(const ShearedRay& ray, const model::Vec3& dir, double tmin, double tmax, double tie,
+  bool search(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
               RayHit* best) const;
 
   const LocalTriangles* tris_;

@@ -1,0 +1,152 @@
+#include "compiler/raycast/plane_blocks.hpp"
+
+#include <glm/geometric.hpp>
+
+namespace walk::compiler {
+namespace {
+
+constexpr int kMaxBlocksPerAxis = 256;
+
+// Layers [first, last] of `edges` whose extent, widened by `margin`, meets [lo, hi].
+std::pair<int, int> layers_meeting(const std::vector<double>& edges, double lo, double hi, double margin) {
+  const int n = static_cast<int>(edges.size()) - 1;
+  int first = static_cast<int>(std::lower_bound(edges.begin(), edges.end(), lo - margin) - edges.begin()) - 1;
+  int last = static_cast<int>(std::upper_bound(edges.begin(), edges.end(), hi + margin) - edges.begin()) - 1;
+  return {std::clamp(first, 0, n - 1), std::clamp(last, 0, n - 1)};
+}
+
+}  // namespace
+
+PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks) {
+  if (boxes.empty()) return;
+  model::Vec3 lo(INFINITY), hi(-INFINITY);
+  for (const PlaneBox& b : boxes) {
+    const int k = b.axis, u = kPlaneU[k], v = kPlaneV[k];
+    lo[k] = std::min(lo[k], b.coord);
+    hi[k] = std::max(hi[k], b.coord);
+    lo[u] = std::min(lo[u], b.u0);
+    hi[u] = std::max(hi[u], b.u1);
+    lo[v] = std::min(lo[v], b.v0);
+    hi[v] = std::max(hi[v], b.v1);
+  }
+  for (int k = 0; k < 3; ++k)  // an axis no plane spans (a flat model) still gets one layer
+    if (!(lo[k] <= hi[k])) lo[k] = hi[k] = 0.0;
+  const double margin = kBlockMargin * std::max(glm::length(hi - lo), 1.0);
+  lo -= model::Vec3(margin);
+  hi += model::Vec3(margin);
+
+  // Near-cubic blocks: side s with prod(extent / s) = target over the axes longer than s (a flat model, or a
+  // thin slab of one, gets a single layer along its thin axis and the target spread over the others).
+  const model::Vec3 extent = hi - lo;
+  const double target = static_cast<double>(std::max<std::size_t>(target_blocks, 1));
+  bool thin[3] = {false, false, false};
+  double side = 0.0;
+  for (int pass = 0; pass < 3; ++pass) {
+    double volume = 1.0;
+    int dims = 0;
+    for (int k = 0; k < 3; ++k)
+      if (!thin[k]) {
+        volume *= extent[k];
+        ++dims;
+      }
+    if (dims == 0) break;
+    side = std::pow(volume / target, 1.0 / dims);
+    bool changed = false;
+    for (int k = 0; k < 3; ++k)
+      if (!thin[k] && extent[k] < side) thin[k] = changed = true;
+    if (!changed) break;
+  }
+  for (int k = 0; k < 3; ++k) {
+    n_[k] = thin[k] ? 1
+                    : static_cast<int>(std::clamp(std::round(extent[k] / side), 1.0,
+                                                  static_cast<double>(kMaxBlocksPerAxis)));
+    edges_[k].resize(n_[k] + 1);
+    for (int i = 0; i <= n_[k]; ++i) edges_[k][i] = lo[k] + extent[k] * i / n_[k];
+    edges_[k][n_[k]] = hi[k];
+    stats_.blocks[k] = n_[k];
+    per_metre_[k] = n_[k] / extent[k];
+  }
+
+  // Listings (block, entry), gathered plane by plane; `slot` remembers the current plane's entry per block.
+  const std::size_t count = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
+  std::vector<std::uint32_t> slot(count, UINT32_MAX);
+  std::vector<std::uint32_t> touched;
+  struct Listing {
+    std::uint32_t block;
+    Entry entry;
+    std::vector<std::uint32_t> items;
+  };
+  std::vector<Listing> listed;
+  std::vector<std::uint8_t> axis_of;
+  auto flush = [&] {
+    for (const std::uint32_t blk : touched) slot[blk] = UINT32_MAX;
+    touched.clear();
+  };
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const PlaneBox& b = boxes[i];
+    if (i > 0 && (boxes[i - 1].axis != b.axis || boxes[i - 1].plane != b.plane)) flush();
+    const int k = b.axis, u = kPlaneU[k], v = kPlaneV[k];
+    const auto [k0, k1] = layers_meeting(edges_[k], b.coord, b.coord, margin);
+    const auto [u0, u1] = layers_meeting(edges_[u], b.u0, b.u1, margin);
+    const auto [v0, v1] = layers_meeting(edges_[v], b.v0, b.v1, margin);
+    for (int ik = k0; ik <= k1; ++ik)
+      for (int iu = u0; iu <= u1; ++iu)
+        for (int iv = v0; iv <= v1; ++iv) {
+          int idx[3];
+          idx[k] = ik;
+          idx[u] = iu;
+          idx[v] = iv;
+          const auto blk = static_cast<std::uint32_t>(block_index(idx));
+          if (slot[blk] == UINT32_MAX) {
+            slot[blk] = static_cast<std::uint32_t>(listed.size());
+            touched.push_back(blk);
+            listed.push_back({blk, {b.coord, b.u0, b.u1, b.v0, b.v1, 0, 0}, {b.item}});
+            axis_of.push_back(static_cast<std::uint8_t>(k));
+          } else {
+            listed[slot[blk]].items.push_back(b.item);
+            Entry& e = listed[slot[blk]].entry;
+            e.u0 = std::min(e.u0, b.u0);
+            e.u1 = std::max(e.u1, b.u1);
+            e.v0 = std::min(e.v0, b.v0);
+            e.v1 = std::max(e.v1, b.v1);
+          }
+        }
+  }
+
+  // Counting sort by (block, axis); stable, so each axis' entries stay in increasing coordinate.
+  std::vector<std::uint32_t> start(count * 3 + 1, 0);
+  for (std::size_t j = 0; j < listed.size(); ++j) ++start[listed[j].block * 3 + axis_of[j] + 1];
+  for (std::size_t c = 0; c < count * 3; ++c) start[c + 1] += start[c];
+  blocks_.resize(count);
+  for (std::size_t blk = 0; blk < count; ++blk) {
+    blocks_[blk].first = start[blk * 3];
+    for (int k = 0; k < 3; ++k) blocks_[blk].end[k] = start[blk * 3 + k + 1];
+    if (blocks_[blk].end[2] == blocks_[blk].first) ++stats_.empty;
+  }
+  std::vector<std::uint32_t> order(listed.size());
+  for (std::size_t j = 0; j < listed.size(); ++j) order[start[listed[j].block * 3 + axis_of[j]]++] = j;
+  entries_.reserve(listed.size());
+  for (std::size_t blk = 0; blk < count; ++blk) blocks_[blk].items_first = blocks_[blk].items_end = 0;
+  for (const std::uint32_t j : order) {  // items laid out in entry order: a block's reads are close together
+    Entry e = listed[j].entry;
+    e.first = static_cast<std::uint32_t>(items_.size());
+    e.count = static_cast<std::uint32_t>(listed[j].items.size());
+    items_.insert(items_.end(), listed[j].items.begin(), listed[j].items.end());
+    entries_.push_back(e);
+  }
+  for (std::size_t blk = 0; blk < count; ++blk)
+    if (blocks_[blk].end[2] != blocks_[blk].first) {
+      blocks_[blk].items_first = entries_[blocks_[blk].first].first;
+      blocks_[blk].items_end =
+          entries_[blocks_[blk].end[2] - 1].first + entries_[blocks_[blk].end[2] - 1].count;
+    }
+  stats_.entries = entries_.size();
+}
+
+std::size_t PlaneBlocks::memory_bytes() const {
+  return blocks_.capacity() * sizeof(Block) + entries_.capacity() * sizeof(Entry) +
+         items_.capacity() * sizeof(std::uint32_t) +
+         (edges_[0].capacity() + edges_[1].capacity() + edges_[2].capacity()) * sizeof(double);
+}
+
+}  // namespace walk::compiler
