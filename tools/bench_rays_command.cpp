@@ -79,7 +79,8 @@ std::string structure_detail(const RayCaster& c) {
 // A caster by name; "axial@B" is the axial structure with B blocks per element (for the block-size sweep).
 std::unique_ptr<RayCaster> make_caster(const std::string& name, const std::vector<compiler::Triangle>& tris) {
   if (name.starts_with("axial@"))
-    return std::make_unique<compiler::AxialCaster>(tris, std::stod(name.substr(6)));
+    return std::make_unique<compiler::AxialCaster>(
+        tris, compiler::BlockSizing{.per_element = std::stod(name.substr(6))});
   return compiler::make_ray_caster(name, tris);
 }
 

@@ -12,10 +12,10 @@ std::vector<std::uint32_t> not_taken(const std::vector<std::uint8_t>& taken) {
 
 }  // namespace
 
-AxialCaster::AxialCaster(std::span<const Triangle> triangles, double blocks_per_element)
+AxialCaster::AxialCaster(std::span<const Triangle> triangles, const BlockSizing& sizing)
     : local_(triangles),
       axial_(local_.triangles.size(), 0),
-      planes_(local_, axial_, blocks_per_element),
+      planes_(local_, axial_, sizing),
       bsp_(local_, not_taken(axial_)) {
   std::vector<std::uint8_t>().swap(axial_);
   bsp_first_ = bsp_.stats().triangles > planes_.stats().triangles;

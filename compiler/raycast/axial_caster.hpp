@@ -9,7 +9,7 @@ namespace walk::compiler {
 
 class AxialCaster final : public RayCaster {
  public:
-  explicit AxialCaster(std::span<const Triangle> triangles, double blocks_per_element = kBlocksPerElement);
+  explicit AxialCaster(std::span<const Triangle> triangles, const BlockSizing& sizing = {});
   [[nodiscard]] std::string_view name() const override { return "axial"; }
   [[nodiscard]] RayHit closest(const Ray& ray) const override;
   [[nodiscard]] bool occluded(const Ray& ray) const override;

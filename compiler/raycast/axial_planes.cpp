@@ -25,7 +25,7 @@ struct Raw {
 }  // namespace
 
 AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& taken,
-                         double blocks_per_element) {
+                         const BlockSizing& sizing) {
   std::vector<Raw> raw[3];
   for (std::uint32_t i = 0; i < lt.triangles.size(); ++i) {
     const Triangle& t = lt.triangles[i];
@@ -109,9 +109,11 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
     }
   }
   stats_.elements = elements.size();
-  blocks_ = PlaneBlocks(
-      boxes, std::max<std::size_t>(
-                 1, static_cast<std::size_t>(blocks_per_element * static_cast<double>(elements.size()))));
+  const auto target = std::max<std::size_t>(
+      1, static_cast<std::size_t>(sizing.per_element * static_cast<double>(elements.size())));
+  blocks_ = PlaneBlocks(boxes, target, sizing.planes_per_layer);
+  if (sizing.planes_per_layer > 0.0 && blocks_.stats().longest > kLongestListing)
+    blocks_ = PlaneBlocks(boxes, target, 0.0);
   // Each block's elements copied in place: a crossing reads one contiguous run, with no index to chase (the
   // walk is bound by memory latency on big buildings).
   cell_elements_.reserve(blocks_.items().size());

@@ -24,11 +24,6 @@ namespace walk::compiler {
 // 1 km building, a millionth of a millimetre on a wall).
 inline constexpr double kEdgeSlack = 1e-9;
 
-// Blocks per element: fewer make long listings, more make rays step through many nearly empty blocks and
-// copy big polygons into many of them; 0.3 was fastest or within noise of it on every model in the sweep of
-// docs/RAYCAST.md (`walk bench rays --casters axial@0.15,axial@0.3,axial@0.6`).
-inline constexpr double kBlocksPerElement = 0.3;
-
 class AxialPlanes {
  public:
   struct Stats {
@@ -40,9 +35,9 @@ class AxialPlanes {
   };
 
   // Takes the triangles whose three vertices share one coordinate exactly and marks them in `taken`; about
-  // `blocks_per_element` blocks per element (triangle or merged rectangle).
+  // blocks sized by `sizing` (per element: a triangle or merged rectangle).
   AxialPlanes(const LocalTriangles& triangles, std::vector<std::uint8_t>& taken,
-              double blocks_per_element = kBlocksPerElement);
+              const BlockSizing& sizing = {});
 
   // Improves `best` with the closest axial hit in (tmin, min(tmax, best.t + tie)); origin is local.
   void closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,

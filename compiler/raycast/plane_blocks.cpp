@@ -17,7 +17,8 @@ std::pair<int, int> layers_meeting(const std::vector<double>& edges, double lo, 
 
 }  // namespace
 
-PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks) {
+PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks,
+                         double planes_per_layer) {
   if (boxes.empty()) return;
   model::Vec3 lo(INFINITY), hi(-INFINITY);
   for (const PlaneBox& b : boxes) {
@@ -56,10 +57,18 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
       if (!thin[k] && extent[k] < side) thin[k] = changed = true;
     if (!changed) break;
   }
+  // A layer of blocks pays only when the walk would otherwise cross several planes of that axis in it.
+  std::size_t planes[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    if (i == 0 || boxes[i - 1].axis != boxes[i].axis || boxes[i - 1].plane != boxes[i].plane)
+      ++planes[boxes[i].axis];
   for (int k = 0; k < 3; ++k) {
+    const double most = planes_per_layer > 0.0
+                            ? std::max(1.0, std::floor(static_cast<double>(planes[k]) / planes_per_layer))
+                            : static_cast<double>(kMaxBlocksPerAxis);
     n_[k] = thin[k] ? 1
                     : static_cast<int>(std::clamp(std::round(extent[k] / side), 1.0,
-                                                  static_cast<double>(kMaxBlocksPerAxis)));
+                                                  std::min(most, static_cast<double>(kMaxBlocksPerAxis))));
     edges_[k].resize(n_[k] + 1);
     for (int i = 0; i <= n_[k]; ++i) edges_[k][i] = lo[k] + extent[k] * i / n_[k];
     edges_[k][n_[k]] = hi[k];
@@ -131,6 +140,7 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
     Entry e = listed[j].entry;
     e.first = static_cast<std::uint32_t>(items_.size());
     e.count = static_cast<std::uint32_t>(listed[j].items.size());
+    stats_.longest = std::max<std::size_t>(stats_.longest, e.count);
     items_.insert(items_.end(), listed[j].items.begin(), listed[j].items.end());
     entries_.push_back(e);
   }

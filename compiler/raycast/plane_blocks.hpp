@@ -29,6 +29,23 @@ inline constexpr int kPlaneV[3] = {2, 0, 1};
 // point computed from an origin inside the model (origins up to ~1e6 diagonals away stay covered).
 inline constexpr double kBlockMargin = 1e-9;
 
+// How finely the blocks cut space.
+struct BlockSizing {
+  // Blocks per element. More skip empty space more finely but copy big polygons into many listings and make
+  // a ray step through more blocks; fewer make longer listings, which are contiguous and cheap to scan.
+  // Memory latency dominates, so fewer won: in the sweep of docs/RAYCAST.md (`walk bench rays --casters
+  // axial@0.02,axial@0.05,...`) 0.05 was fastest or within noise of it on the house, office, E1M1 and DM1;
+  // the tower kept gaining down to 0.02.
+  double per_element = 0.05;
+  // A layer of blocks along an axis pays only when a ray would otherwise cross several of that axis' planes
+  // in it: at most one layer per this many planes (0: no limit). Small buildings (the office: 7 planes an
+  // axis) then get one block, where the walk over the whole model is cheaper than stepping through blocks
+  // (the office's occlusion rays ran at 0.55 of Embree with 8 blocks, 0.83 with 1). If that leaves a listing
+  // longer than kLongestListing (a big tiled floor in a small model), the limit is dropped.
+  double planes_per_layer = 4.0;
+};
+inline constexpr std::size_t kLongestListing = 64;
+
 // One element's extent in its plane: the element lies in plane `plane` (index among the axis' planes) at
 // `coord` along `axis`, within [u0, u1] x [v0, v1] of the plane's (u, v) axes.
 struct PlaneBox {
@@ -45,12 +62,14 @@ class PlaneBlocks {
     std::size_t blocks[3] = {0, 0, 0};  // per axis
     std::size_t entries = 0;            // plane listings in all blocks
     std::size_t empty = 0;              // blocks with no plane
+    std::size_t longest = 0;            // most elements in one listing
   };
 
   PlaneBlocks() = default;
   // `boxes` grouped by (axis, plane), planes of each axis in increasing coordinate; about `target_blocks`
-  // near-cubic blocks over their bounds.
-  PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks);
+  // near-cubic blocks over their bounds, with at most one layer per `planes_per_layer` planes along each axis
+  // (0: no such limit).
+  PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks, double planes_per_layer);
 
   // Calls visit(axis, first, count, t, pu, pv) for each listed plane the ray crosses with tmin < t < limit,
   // where (pu, pv) is the crossing point in the plane's frame and lies within the bounds of the plane's

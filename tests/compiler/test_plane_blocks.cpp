@@ -14,6 +14,9 @@ namespace walk::compiler {
 namespace {
 
 using V = model::Vec3;
+// Denser than the default, and with no limit from the plane count, so that rays meet many block edges in
+// these small models.
+constexpr BlockSizing kTestBlocks{.per_element = 0.3, .planes_per_layer = 0.0};
 
 // Walls of 0.5 m quads over [0, n]^3 on the planes x, y, z = c for each c in `at` (default 0..n): a lattice
 // of closed boxes, so the blocks' edges fall everywhere relative to the walls.
@@ -74,7 +77,7 @@ void expect_same(const RayCaster& ours, const RayCaster& reference, std::span<co
 
 TEST(PlaneBlocks, RaysFromBlockEdgesAndCornersMatchBruteForce) {
   const auto tris = cube_lattice(4);
-  const AxialCaster ours(tris);
+  const AxialCaster ours(tris, kTestBlocks);
   const BruteForceCaster reference(tris);
   const V centre = whole_metre_centre(tris);
   const PlaneBlocks& blocks = ours.planes().blocks();
@@ -114,14 +117,14 @@ TEST(PlaneBlocks, RaysFromBlockEdgesAndCornersMatchBruteForce) {
 TEST(PlaneBlocks, WallsLyingExactlyOnBlockEdges) {
   // The same bounds and element count give the same blocks: move the inner walls onto inner block edges.
   const auto first = cube_lattice(4);
-  const AxialCaster probe(first);
+  const AxialCaster probe(first, kTestBlocks);
   const V centre = whole_metre_centre(first);
   const auto& e = probe.planes().blocks().edges(0);
   ASSERT_GE(e.size(), 6u);
   const std::vector<double> at{0.0, e[1] + centre.x, e[2] + centre.x, e[e.size() - 2] + centre.x, 4.0};
   const auto tris = cube_lattice(4, at);
   ASSERT_EQ(whole_metre_centre(tris), centre);
-  const AxialCaster ours(tris);
+  const AxialCaster ours(tris, kTestBlocks);
   const BruteForceCaster reference(tris);
   for (int k = 0; k < 3; ++k)
     for (std::size_t i = 1; i < e.size() - 1; ++i)
@@ -148,7 +151,7 @@ TEST(PlaneBlocks, FlatModelHasOneLayerAndStillFindsEveryTile) {
       tiles.push_back({V(x, y, 3), V(x + 0.25, y, 3), V(x + 0.25, y + 0.25, 3), p});
       tiles.push_back({V(x, y, 3), V(x + 0.25, y + 0.25, 3), V(x, y + 0.25, 3), p});
     }
-  const AxialCaster ours(tiles);
+  const AxialCaster ours(tiles, kTestBlocks);
   const BruteForceCaster reference(tiles);
   const auto& tris = tiles;
   const PlaneBlocks& blocks = ours.planes().blocks();
