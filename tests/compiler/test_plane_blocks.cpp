@@ -143,14 +143,7 @@ TEST(PlaneBlocks, WallsLyingExactlyOnBlockEdges) {
 
 TEST(PlaneBlocks, FlatModelHasOneLayerAndStillFindsEveryTile) {
   // One plane of tiles: the thin axis gets a single layer, the target spread over the other two.
-  std::vector<Triangle> tiles;
-  std::uint32_t p = 0;
-  for (int i = 0; i < 40; ++i)
-    for (int j = 0; j < 40; ++j, ++p) {
-      const double x = i * 0.25, y = j * 0.25;
-      tiles.push_back({V(x, y, 3), V(x + 0.25, y, 3), V(x + 0.25, y + 0.25, 3), p});
-      tiles.push_back({V(x, y, 3), V(x + 0.25, y + 0.25, 3), V(x, y + 0.25, 3), p});
-    }
+  const auto tiles = testing::tiled_plane(40, 0.25, 3.0);
   const AxialCaster ours(tiles, kTestBlocks);
   const BruteForceCaster reference(tiles);
   const auto& tris = tiles;

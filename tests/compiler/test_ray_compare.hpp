@@ -19,6 +19,20 @@ inline constexpr double kTieCheck = 1e-7;
 // along a wall that meet the floor's edge, say). Such disagreements are counted apart, not failed.
 inline constexpr double kEdgeCheck = 1e-7;
 
+// An n x n grid of square tiles of side `size` in the plane z = `z` from the origin, two triangles per tile;
+// tile (i, j) is polygon i * n + j.
+inline std::vector<Triangle> tiled_plane(int n, double size, double z) {
+  std::vector<Triangle> tiles;
+  std::uint32_t p = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j, ++p) {
+      const double x = i * size, y = j * size;
+      tiles.push_back({{x, y, z}, {x + size, y, z}, {x + size, y + size, z}, p});
+      tiles.push_back({{x, y, z}, {x + size, y + size, z}, {x, y + size, z}, p});
+    }
+  return tiles;
+}
+
 struct Agreement {
   std::size_t rays = 0, hits = 0, same = 0, ties = 0, edge_cases = 0, closest_mismatch = 0, any_mismatch = 0;
   std::size_t reference_wrong = 0;  // disagreements where brute force sided with ours

@@ -13,6 +13,7 @@
 #include "compiler/raycast/embree_caster.hpp"
 #include "compiler/raycast/watertight_triangle.hpp"
 #include "model/error.hpp"
+#include "tests/compiler/test_ray_compare.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -91,14 +92,7 @@ TEST(RayPredicates, AxialEdgeSlackIsOneNanometre) {
 }
 
 TEST(RayPredicates, AxialGridFindsEachOfThousandsOfTiles) {
-  std::vector<Triangle> tiles;
-  std::uint32_t p = 0;
-  for (int i = 0; i < 60; ++i)
-    for (int j = 0; j < 60; ++j, ++p) {
-      const double x = i * 0.5, y = j * 0.5;
-      tiles.push_back({V(x, y, 2), V(x + 0.5, y, 2), V(x + 0.5, y + 0.5, 2), p});
-      tiles.push_back({V(x, y, 2), V(x + 0.5, y + 0.5, 2), V(x, y + 0.5, 2), p});
-    }
+  const auto tiles = testing::tiled_plane(60, 0.5, 2.0);
   const AxialCaster c(tiles);
   EXPECT_EQ(c.planes().stats().planes[2], 1u);
   // The plane's 3600 tiles are spread over about 180 block listings of a few dozen each (a tile lying across
