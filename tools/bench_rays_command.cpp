@@ -76,12 +76,12 @@ std::string structure_detail(const RayCaster& c) {
   return buf;
 }
 
-// A caster by name; "axial@B" is the axial structure with B blocks per element (for the block-size sweep).
+// A caster by name; "axial@B" is the axial structure with B blocks per element and no limit from the plane
+// count (for the block-size sweep).
 std::unique_ptr<RayCaster> make_caster(const std::string& name, const std::vector<compiler::Triangle>& tris) {
-  if (name.starts_with("axial@"))
-    return std::make_unique<compiler::AxialCaster>(
-        tris, compiler::BlockSizing{.per_element = std::stod(name.substr(6))});
-  return compiler::make_ray_caster(name, tris);
+  if (!name.starts_with("axial@")) return compiler::make_ray_caster(name, tris);
+  return std::make_unique<compiler::AxialCaster>(
+      tris, compiler::BlockSizing{.per_element = std::stod(name.substr(6)), .planes_per_layer = 0.0});
 }
 
 int run_speed(const Options& opt) {
@@ -178,8 +178,10 @@ void add_bench_rays_command(CLI::App& bench, int& exit_code) {
   rays->add_option("--models", opt->models,
                    "Comma-separated: house, office, tower, e1m1, dm1, conference, sibenik, cornell")
       ->capture_default_str();
-  rays->add_option("--casters", opt->casters,
-                   "Comma-separated: axial, bvh, brute, embree; axial@B: axial with B blocks per element")
+  rays->add_option(
+          "--casters", opt->casters,
+          "Comma-separated: axial, bvh, brute, embree; axial@B[+skew|+bsp]: axial with B blocks per element "
+          "and the non-axial triangles in the blocks or the BSP")
       ->capture_default_str();
   rays->add_option("--threads", opt->threads, "Comma-separated thread counts")->capture_default_str();
   rays->add_option("--rays", opt->rays, "Rays per set")->capture_default_str();
