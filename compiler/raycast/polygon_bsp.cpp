@@ -41,17 +41,17 @@ double half_area(const model::Vec3& lo, const model::Vec3& hi) {
   return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-// `inv` is 1/dir per axis, computed once per ray.
+// `inv` is 1/dir per axis, computed once per ray. A NaN (the origin on the slab face of a parallel ray) leaves
+// t0 and t1 as they are: std::max(t0, NaN) and std::min(t1, NaN) return their first argument. No branch per
+// axis: the three slabs are folded and compared once.
 inline bool slab(const model::Vec3& lo, const model::Vec3& hi, const model::Vec3& o, const model::Vec3& inv,
                  double& t0, double& t1) {
   for (int a = 0; a < 3; ++a) {
-    double n = (lo[a] - o[a]) * inv[a], f = (hi[a] - o[a]) * inv[a];
-    if (n > f) std::swap(n, f);
-    if (!std::isnan(n)) t0 = std::max(t0, n);  // NaN: origin on the slab face of a parallel ray
-    if (!std::isnan(f)) t1 = std::min(t1, f);
-    if (t0 > t1) return false;
+    const double n = (lo[a] - o[a]) * inv[a], f = (hi[a] - o[a]) * inv[a];
+    t0 = std::max(t0, std::min(n, f));
+    t1 = std::min(t1, std::max(n, f));
   }
-  return true;
+  return t0 <= t1;
 }
 
 }  // namespace
