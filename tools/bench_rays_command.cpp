@@ -70,9 +70,9 @@ std::string structure_detail(const RayCaster& c) {
   std::snprintf(
       buf, sizeof buf,
       "axial %zu tris in %zu+%zu+%zu planes (%zu rects) over %zux%zux%zu blocks (%zu empty) with %zu "
-      "listings; bsp %zu tris %zu nodes depth %d",
+      "listings; bsp %zu tris %zu nodes (%zu axial splits) depth %d",
       p.triangles, p.planes[0], p.planes[1], p.planes[2], p.rectangles, k.blocks[0], k.blocks[1], k.blocks[2],
-      k.empty, k.entries, b.triangles, b.nodes, b.depth);
+      k.empty, k.entries, b.triangles, b.nodes, b.axis_splits, b.depth);
   return buf;
 }
 

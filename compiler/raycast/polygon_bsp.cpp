@@ -41,9 +41,9 @@ double half_area(const model::Vec3& lo, const model::Vec3& hi) {
   return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-// `inv` is 1/dir per axis, computed once per ray. A NaN (the origin on the slab face of a parallel ray) leaves
-// t0 and t1 as they are: std::max(t0, NaN) and std::min(t1, NaN) return their first argument. No branch per
-// axis: the three slabs are folded and compared once.
+// `inv` is 1/dir per axis, computed once per ray. A NaN (the origin on the slab face of a parallel ray)
+// leaves t0 and t1 as they are: std::max(t0, NaN) and std::min(t1, NaN) return their first argument. No
+// branch per axis: the three slabs are folded and compared once.
 inline bool slab(const model::Vec3& lo, const model::Vec3& hi, const model::Vec3& o, const model::Vec3& inv,
                  double& t0, double& t1) {
   for (int a = 0; a < 3; ++a) {
@@ -163,6 +163,9 @@ std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
   }
   nodes_[index].normal = n;
   nodes_[index].offset = offset;
+  for (int a = 0; a < 3; ++a)
+    if (n[a] == 1.0 && n[(a + 1) % 3] == 0.0 && n[(a + 2) % 3] == 0.0) nodes_[index].axis = a;
+  if (nodes_[index].axis >= 0) ++stats_.axis_splits;
   std::vector<std::uint32_t>().swap(ids);
   if (!front.empty()) {
     const std::uint32_t f = build(front, depth + 1);
@@ -213,10 +216,20 @@ bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmi
       }
     }
     if (n.front == kNoHit && n.back == kNoHit) continue;
-    const double dist = glm::dot(n.normal, o) - n.offset;
-    const double denom = glm::dot(n.normal, dir);
+    // Distance to the split plane and approach speed; an axis plane needs neither dot products nor a
+    // division.
+    double dist, denom, inv_denom;
+    if (n.axis >= 0) {
+      dist = o[n.axis] - n.offset;
+      denom = dir[n.axis];
+      inv_denom = inv[n.axis];
+    } else {
+      dist = glm::dot(n.normal, o) - n.offset;
+      denom = glm::dot(n.normal, dir);
+      inv_denom = 1.0 / denom;
+    }
     // Rounding margin in t: the classification tolerance plus the rounding of dist, over the approach speed.
-    const double margin = (2.0 * kPlaneEps + 1e-15 * std::abs(dist)) / std::abs(denom);
+    const double margin = (2.0 * kPlaneEps + 1e-15 * std::abs(dist)) * std::abs(inv_denom);
     auto push = [&](std::uint32_t child, double a, double b) {
       if (child != kNoHit && a <= b && a <= limit) stack[top++] = {child, a, b};
     };
@@ -225,7 +238,7 @@ bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmi
       if (dist <= kPlaneEps) push(n.back, t0, t1);
       continue;
     }
-    const double ts = -dist / denom;
+    const double ts = -dist * inv_denom;
     const std::uint32_t first = denom > 0.0 ? n.back : n.front;  // the side the ray is on before ts
     const std::uint32_t second = denom > 0.0 ? n.front : n.back;
     push(second, std::max(t0, ts - margin), t1);  // pushed first: searched after the near side

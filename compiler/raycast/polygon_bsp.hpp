@@ -18,7 +18,8 @@ class PolygonBsp {
   struct Stats {
     std::size_t triangles = 0;
     std::size_t nodes = 0;
-    std::size_t references = 0;  // triangle references in all nodes (straddlers count more than once)
+    std::size_t references = 0;   // triangle references in all nodes (straddlers count more than once)
+    std::size_t axis_splits = 0;  // nodes split by an axis plane
     int depth = 0;
   };
 
@@ -43,6 +44,7 @@ class PolygonBsp {
     model::Vec3 lo{0.0}, hi{0.0};
     std::uint32_t front = kNoHit, back = kNoHit;  // children (kNoHit: none)
     std::uint32_t first = 0, count = 0;           // triangles kept here, in items_
+    std::int32_t axis = -1;  // the split plane is axis = offset (normal a unit axis): no dot products
   };
 
   std::uint32_t build(std::vector<std::uint32_t>& ids, int depth);
