@@ -401,7 +401,9 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     cell = r.bundle.locate_cell(eye);
     if (cell >= r.bundle.cells().size()) cell = FrameStats::kNoCell;
   }
-  const std::uint32_t list_cell = r.pvs_culling ? cell : FrameStats::kNoCell;
+  // The compiler leaves out of each cell's PVS the polygons turned away from all of it, which only a
+  // renderer culling back faces may skip: with culling off, every polygon is drawn.
+  const std::uint32_t list_cell = r.pvs_culling && r.culling ? cell : FrameStats::kNoCell;
   // Flat polygon light needs no diced vertices: the coarse form draws the same surfaces in far fewer
   // triangles.
   const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.coarse_polygons.empty();

@@ -74,7 +74,8 @@ class Renderer {
   // One level per circuit, clamped to 0..1 (NaN reads as 0); missing entries keep their previous level.
   void set_dimmers(std::span<const float> levels);
   [[nodiscard]] std::span<const float> dimmers() const;
-  // On by default: each zone's copy of a double wall faces into its own zone.
+  // On by default: each zone's copy of a double wall faces into its own zone. The bundle's PVS assumes it
+  // (polygons turned away from a whole cell are left out), so turning it off also draws every polygon.
   void set_backface_culling(bool enabled);
   // Blit each frame to the default framebuffer (a window); off by default. Use Backend::has_window().
   void set_present_to_window(bool enabled);

@@ -66,7 +66,7 @@ int verify(const VerifyArgs& args) {
   }
   part.bounds = {bounds.min, bounds.max};
   part.cell_polygons.resize(part.cells.size());
-  const PortalGraph graph = find_portals(part, j.polygons());
+  const PortalGraph graph = find_portals(part, j.polygons(), args.options.cull_back_faces);
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<CellViews> views;
@@ -96,6 +96,7 @@ int verify(const VerifyArgs& args) {
       cfg.rays_per_point = s.rays;
       cfg.threads = args.options.threads;
       cfg.threshold = args.threshold;
+      cfg.cull_back_faces = args.options.cull_back_faces;
       const auto t = std::chrono::steady_clock::now();
       const VisibilityResult vr = compute_visibility(b->vertices(), b->indices(), b->polygons(), cfg);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -177,6 +178,9 @@ void add_verify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threshold", args->threshold,
                   "Partition threshold the sweep recomputes cells with: the scene's [visibility] threshold");
   cmd->add_flag("-q,--quiet", args->quiet, "No per-cell lines");
+  cmd->add_flag("--two-sided{false}", args->options.cull_back_faces,
+                "Judge as if the renderer drew both sides of every polygon (default: back faces culled, as "
+                "it draws them)");
   cmd->add_flag(
       "--anywhere{false}", args->options.free_space_only,
       "Viewpoints anywhere in a cell, also inside solids and outside the model (default: open space)");

@@ -43,12 +43,21 @@ Box shared_face(const Box& a, const Box& b, int axis, double coord) {
   return r;
 }
 
-// The open part of a face: rectangle minus the opaque polygons in its plane, cracks removed.
+// Which opaque polygons of a plane close a face: all of them, or (back faces culled) only those whose
+// front a sight line going the given way meets.
+enum class Closing { All, FacingMinus, FacingPlus };
+
+// The open part of a face: rectangle minus the opaque polygons in its plane that close it, cracks removed.
 ClipperLib::Paths open_part(const Box& face, int axis, double coord, const Partition& part,
-                            const std::vector<VisPolygon>& polygons, bool glass_closes) {
+                            const std::vector<VisPolygon>& polygons, bool glass_closes,
+                            Closing closing = Closing::All) {
   ClipperLib::Paths region{rect_path(face, axis)};
   if (const AxialPlane* plane = find_plane(part.planes, axis, coord)) {
-    region = subtract(region, union_of(plane->opaque, polygons, axis, &face));
+    std::vector<std::uint32_t> opaque;
+    for (const auto id : plane->opaque)
+      if (closing == Closing::All || (closing == Closing::FacingMinus) == (polygons[id].normal[axis] < 0.0))
+        opaque.push_back(id);
+    region = subtract(region, union_of(opaque, polygons, axis, &face));
     if (glass_closes) region = subtract(region, union_of(plane->glass, polygons, axis, &face));
   }
   return open_region(region, kCrackRadius);
@@ -56,7 +65,8 @@ ClipperLib::Paths open_part(const Box& face, int axis, double coord, const Parti
 
 }  // namespace
 
-PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& polygons) {
+PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& polygons,
+                         bool cull_back_faces) {
   PortalGraph g;
   g.cell_portals.resize(part.cells.size());
   const auto& cells = part.cells;
@@ -69,42 +79,58 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
         if (d == c || std::abs(cells[d].min[axis] - x) > kFaceTolerance) continue;
         const Box face = shared_face(cells[c], cells[d], axis, x);
         if (face.max[u] - face.min[u] <= 0.0 || face.max[v] - face.min[v] <= 0.0) continue;
-        ClipperLib::PolyTree tree;
-        {
-          ClipperLib::Clipper k;
-          k.AddPaths(open_part(face, axis, x, part, polygons, false), ClipperLib::ptSubject, true);
-          k.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-        }
         const ClipperLib::Paths glass_open = open_part(face, axis, x, part, polygons, true);
-        for (const ClipperLib::PolyNode* outer : tree.Childs) {
-          Portal p;
-          p.back = c;
-          p.front = d;
-          p.axis = axis;
-          p.coord = x;
-          ClipperLib::Paths piece{outer->Contour};
-          for (const auto* hole : outer->Childs) piece.push_back(hole->Contour);
-          p.area = area_of(piece);
-          if (p.area < kMinOpeningArea) continue;
-          for (const auto& path : piece) {
-            Winding w;
-            for (const auto& q : path) w.push_back(to_3d(q, axis, x));
-            p.outline.push_back(std::move(w));
-          }
-          model::Vec3 n{0.0};
-          n[axis] = 1.0;
-          p.hull = convex_hull(p.outline.front(), n);
-          // Glazed when glass closes all of it.
+        // Portals over `open`, passable forward (back cell to front cell) and/or backward.
+        auto emit = [&](const ClipperLib::Paths& open, bool forward, bool backward) {
+          ClipperLib::PolyTree tree;
           ClipperLib::Clipper k;
-          k.AddPaths(glass_open, ClipperLib::ptSubject, true);
-          k.AddPaths(piece, ClipperLib::ptClip, true);
-          ClipperLib::Paths left;
-          k.Execute(ClipperLib::ctIntersection, left, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-          p.glazed = area_of(left) < kMinOpeningArea;
-          const auto id = static_cast<std::uint32_t>(g.portals.size());
-          g.cell_portals[c].push_back(id);
-          g.cell_portals[d].push_back(id);
-          g.portals.push_back(std::move(p));
+          k.AddPaths(open, ClipperLib::ptSubject, true);
+          k.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+          for (const ClipperLib::PolyNode* outer : tree.Childs) {
+            Portal p;
+            p.back = c;
+            p.front = d;
+            p.axis = axis;
+            p.coord = x;
+            p.forward = forward;
+            p.backward = backward;
+            ClipperLib::Paths piece{outer->Contour};
+            for (const auto* hole : outer->Childs) piece.push_back(hole->Contour);
+            p.area = area_of(piece);
+            if (p.area < kMinOpeningArea) continue;
+            for (const auto& path : piece) {
+              Winding w;
+              for (const auto& q : path) w.push_back(to_3d(q, axis, x));
+              p.outline.push_back(std::move(w));
+            }
+            model::Vec3 n{0.0};
+            n[axis] = 1.0;
+            p.hull = convex_hull(p.outline.front(), n);
+            // Glazed when glass closes all of it.
+            ClipperLib::Clipper g2;
+            g2.AddPaths(glass_open, ClipperLib::ptSubject, true);
+            g2.AddPaths(piece, ClipperLib::ptClip, true);
+            ClipperLib::Paths left;
+            g2.Execute(ClipperLib::ctIntersection, left, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+            p.glazed = area_of(left) < kMinOpeningArea;
+            const auto id = static_cast<std::uint32_t>(g.portals.size());
+            g.cell_portals[c].push_back(id);
+            g.cell_portals[d].push_back(id);
+            g.portals.push_back(std::move(p));
+          }
+        };
+        const ClipperLib::Paths both = open_part(face, axis, x, part, polygons, false);
+        emit(both, true, true);
+        if (cull_back_faces) {
+          // A sight line going +axis meets the fronts of polygons facing -axis; the rest it passes.
+          const auto forward = open_region(
+              subtract(open_part(face, axis, x, part, polygons, false, Closing::FacingMinus), both),
+              kCrackRadius);
+          const auto backward = open_region(
+              subtract(open_part(face, axis, x, part, polygons, false, Closing::FacingPlus), both),
+              kCrackRadius);
+          emit(forward, true, false);
+          emit(backward, false, true);
         }
       }
       // The outer boundary: open parts there (neither opaque nor glass) are leaks.

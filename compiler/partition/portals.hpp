@@ -24,6 +24,11 @@ struct Portal {
   Winding hull;                  // convex hull of the outer loop: what the portal flow uses (conservative)
   double area = 0.0;             // square metres, holes subtracted
   bool glazed = false;           // wholly covered by glass
+  // Which way sight lines pass: from `back` into `front`, and from `front` into `back`. With back faces
+  // culled, an opaque polygon blocks only the sight lines that meet its front; where a face of the cell
+  // boundary is covered by polygons facing one way only, the portal there is one-way.
+  bool forward = true;
+  bool backward = true;
 };
 
 struct Leak {
@@ -40,6 +45,9 @@ struct PortalGraph {
   std::vector<Leak> leaks;
 };
 
-[[nodiscard]] PortalGraph find_portals(const Partition& partition, const std::vector<VisPolygon>& polygons);
+// With `cull_back_faces` (the renderer's default), the parts of a face covered only by polygons facing one
+// way become one-way portals as well.
+[[nodiscard]] PortalGraph find_portals(const Partition& partition, const std::vector<VisPolygon>& polygons,
+                                       bool cull_back_faces = false);
 
 }  // namespace walk::compiler

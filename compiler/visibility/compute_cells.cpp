@@ -36,10 +36,12 @@ std::string VisibilityResult::summary() const {
   return fmt::format(
       "{} cells (depth {}, {} candidate planes), {} portals, {} leaks, PVS avg {:.0f} worst {} of {} "
       "polygons; "
-      "flow {} steps, {} fallbacks; {} sample rays; partition {:.2f} s portals {:.2f} s pvs {:.2f} s",
+      "flow {} steps, {} fallbacks; {} sample rays; {} back faces dropped; partition {:.2f} s portals {:.2f} "
+      "s "
+      "pvs {:.2f} s",
       partition.cells.size(), partition.depth, partition.candidates, graph.portals.size(), graph.leaks.size(),
-      avg, worst, polygons.size(), flow_steps, flow_fallbacks, sample_rays, seconds_partition,
-      seconds_portals, seconds_pvs);
+      avg, worst, polygons.size(), flow_steps, flow_fallbacks, sample_rays, back_faces_dropped,
+      seconds_partition, seconds_portals, seconds_pvs);
 }
 
 VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertices,
@@ -52,7 +54,7 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
   r.partition = build_partition(r.polygons, config);
   r.seconds_partition = since(t);
   t = std::chrono::steady_clock::now();
-  r.graph = find_portals(r.partition, r.polygons);
+  r.graph = find_portals(r.partition, r.polygons, config.cull_back_faces);
   r.seconds_portals = since(t);
   for (const auto& leak : r.graph.leaks)
     spdlog::debug("leak: {:.3f} m2 open to the outside at local ({:.3f}, {:.3f}, {:.3f}) in cell {}",
@@ -65,9 +67,10 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     for (std::uint32_t p = 0; p < r.polygons.size(); ++p)
       for (const auto& tri : r.polygons[p].triangles) triangles.push_back({tri[0], tri[1], tri[2], p});
     const auto caster = make_ray_caster(config.ray_caster, triangles);
-    sampled = sampled_pvs(r.partition, r.graph, r.polygons, *caster,
-                          {config.sample_points, config.rays_per_point, config.seed, config.threads},
-                          &r.sample_rays);
+    sampled = sampled_pvs(
+        r.partition, r.graph, r.polygons, *caster,
+        {config.sample_points, config.rays_per_point, config.seed, config.threads, config.cull_back_faces},
+        &r.sample_rays);
   }
   if (config.method != PvsMethod::Sampled) {
     FlowPvs flow = portal_flow_pvs(r.partition, r.graph, r.polygons, config.flow_budget, config.threads);
@@ -88,6 +91,17 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
       case PvsMethod::Combined:
         r.pvs[c] = united(flow_polys[c], sampled[c]);
         break;
+    }
+  }
+  if (config.cull_back_faces) {
+    // The renderer culls back faces: an opaque polygon turned away from the whole cell is never drawn there.
+    for (std::size_t c = 0; c < n; ++c) {
+      const Box& box = r.partition.cells[c];
+      std::erase_if(r.pvs[c], [&](std::uint32_t p) {
+        const bool away = r.polygons[p].opaque && faces_away_from(r.polygons[p], box);
+        r.back_faces_dropped += away ? 1 : 0;
+        return away;
+      });
     }
   }
   r.seconds_pvs = since(t);

@@ -59,7 +59,13 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
     std::vector<char> seen(polygons.size(), 0);
     std::vector<std::uint32_t> ids;
     const Box& box = part.cells[c];
-    const auto& portals = graph.cell_portals[c];
+    // Points on portals aim out of the cell: only portals open that way (a one-way portal the other way is
+    // a wall's front seen from this side).
+    std::vector<std::uint32_t> portals;
+    for (const auto id : graph.cell_portals[c]) {
+      const Portal& p = graph.portals[id];
+      if (p.back == c ? p.forward : p.backward) portals.push_back(id);
+    }
     for (int i = 0; i < options.points; ++i) {
       model::Vec3 origin;
       model::Vec3 out_normal{0.0};  // points on a portal aim out of the cell through it
@@ -76,7 +82,7 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
         ray.dir = random_direction(rng);
         if (glm::dot(ray.dir, out_normal) < 0.0) ray.dir = -ray.dir;
         ids.clear();
-        trace_through_glass(caster, ray, glass, ids);
+        trace_through_glass(caster, ray, glass, ids, options.cull_back_faces);
         for (const auto id : ids)
           if (id < seen.size()) seen[id] = 1;
       }

@@ -15,6 +15,7 @@ struct SampledPvsOptions {
   int rays_per_point = 256;
   std::uint64_t seed = 1;
   unsigned threads = 0;
+  bool cull_back_faces = false;  // sight lines pass polygons met from behind (the renderer culls them)
 };
 
 [[nodiscard]] std::vector<std::vector<std::uint32_t>> sampled_pvs(

@@ -65,7 +65,7 @@ void VisibilityJudge::cube(const model::Vec3& eye, int res, CellViews* keep, std
         ray.origin = eye;
         ray.dir =
             fwd + right * ((2.0 * (x + 0.5)) / res - 1.0) + up * ((2.0 * (double(y) + 0.5)) / res - 1.0);
-        trace_through_glass(*caster_, ray, glass_, ids);
+        trace_through_glass(*caster_, ray, glass_, ids, options_.cull_back_faces);
         row_offsets[y].push_back(static_cast<std::uint32_t>(ids.size()));
       }
     });

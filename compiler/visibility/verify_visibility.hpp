@@ -24,6 +24,9 @@ struct VerifyOptions {
   std::uint64_t seed = 7;
   // Viewpoints only where a walker can stand: in open space, not inside a solid or outside the model.
   bool free_space_only = true;
+  // Judge the images the renderer draws: with back faces culled (its default), a polygon met from behind is
+  // not drawn and what lies behind it shows.
+  bool cull_back_faces = true;
 };
 
 // What the sight lines from a cell's viewpoints met: per pixel the ids along it (glass, then the stop).

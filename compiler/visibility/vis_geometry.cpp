@@ -170,4 +170,17 @@ std::vector<VisPolygon> vis_polygons(std::span<const model::VertexRecord> vertic
   return out;
 }
 
+bool faces_away_from(const VisPolygon& p, const Box& box) {
+  if (p.triangles.empty()) return false;
+  for (const auto& t : p.triangles) {
+    const model::Vec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+    if (n == model::Vec3(0.0)) continue;
+    // The box corner farthest along n: on or behind the plane means the whole box is.
+    model::Vec3 far;
+    for (int a = 0; a < 3; ++a) far[a] = n[a] >= 0.0 ? box.max[a] : box.min[a];
+    if (glm::dot(n, far - t[0]) > 0.0) return false;
+  }
+  return true;
+}
+
 }  // namespace walk::compiler

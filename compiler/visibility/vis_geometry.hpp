@@ -66,6 +66,11 @@ struct VisPolygon {
   double coord = 0.0;  // its plane's coordinate on that axis
 };
 
+// Does every triangle of `p` face away from every point of `box` (the box on or behind each triangle's
+// plane)? Then a renderer that culls back faces never draws `p` from anywhere in the box. Degenerate
+// triangles (no area, nothing to draw) do not count against it.
+[[nodiscard]] bool faces_away_from(const VisPolygon& p, const Box& box);
+
 [[nodiscard]] std::vector<VisPolygon> vis_polygons(std::span<const model::VertexRecord> vertices,
                                                    std::span<const std::uint32_t> indices,
                                                    std::span<const model::PolygonRecord> polygons);

@@ -31,6 +31,10 @@ struct VisibilityConfig {
   int sample_points = 32;                 // sampled PVS: points per cell (half inside, half on its portals)
   int rays_per_point = 256;               // sampled PVS: directions per point
   std::uint64_t flow_budget = 2'000'000;  // portal-flow steps per cell before falling back to a flood
+  // Leave out of a cell's PVS every opaque polygon turned away from the whole cell: the renderer culls back
+  // faces, so it would never draw them there (EnergyPlus buildings hold every interzone wall twice, back to
+  // back, and a room's PVS held both copies of each wall it sees).
+  bool cull_back_faces = true;
   std::string ray_caster = "axial";
   unsigned threads = 0;  // 0: hardware concurrency
   std::uint64_t seed = 1;

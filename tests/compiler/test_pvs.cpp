@@ -14,13 +14,16 @@ using testing::MiniBuilding;
 using testing::test_config;
 
 // Small images keep the suite fast; the hard cases are built so that a miss would cover many pixels.
-VerifyOptions small_judge() {
+VerifyOptions small_judge(bool cull_back_faces = false) {
   VerifyOptions o;
+  o.cull_back_faces = cull_back_faces;
   o.viewpoints = 3;
   o.resolution = 48;
   o.dense = 2;
   o.dense_resolution = 24;
-  o.ray_caster = "bvh";
+  // Seeing past back faces relies on the tie rule (of two back-to-back walls the one facing the ray wins),
+  // which the axial caster keeps and the skeleton's BVH does not.
+  o.ray_caster = cull_back_faces ? "axial" : "bvh";
   o.threads = 1;
   return o;
 }
@@ -31,10 +34,12 @@ struct Judged {
   std::vector<std::vector<std::uint32_t>> exact;
 };
 
-Judged judge(const MiniBuilding& m, PvsMethod method) {
+Judged judge(const MiniBuilding& m, PvsMethod method, bool cull_back_faces = false) {
   Judged j;
-  j.vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, test_config(method));
-  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge());
+  VisibilityConfig config = test_config(method, cull_back_faces);
+  if (cull_back_faces) config.ray_caster = "axial";
+  j.vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(cull_back_faces));
   for (std::uint32_t c = 0; c < j.vis.partition.cells.size(); ++c) {
     const CellViews v = judge.views(j.vis.partition.cells[c], c);
     j.missed += judge.missed(v, j.vis.pvs[c]);
@@ -174,6 +179,57 @@ TEST(Pvs, SampledNeverAddsWhatCannotBeSeen) {
   const Judged c = judge(m, PvsMethod::Conservative);
   for (std::size_t cell = 0; cell < s.vis.pvs.size(); ++cell)
     for (const auto p : s.vis.pvs[cell]) EXPECT_TRUE(has(c.vis.pvs[cell], p));
+}
+
+// Two rooms along x (0..4, 4..8) with inward-facing outer walls, split at x = 4 by `divider`: the renderer
+// culls back faces, and so do the PVS and the judge here.
+MiniBuilding two_rooms_facing_in(int divider_facing_a, int divider_facing_b) {
+  MiniBuilding m;
+  m.room_inward({0, 0, 0}, {8, 4, 3});
+  // The divider: a quad facing room A (-x) and/or one facing room B (+x), back to back.
+  if (divider_facing_a) m.rect(0, 4.0, 0, 4, 0, 3, model::Role::Opaque, -1);
+  if (divider_facing_b) m.rect(0, 4.0, 0, 4, 0, 3, model::Role::Opaque, 1);
+  return m;
+}
+
+TEST(Pvs, BackToBackWallsSealWhenBackFacesAreCulled) {
+  const MiniBuilding m = two_rooms_facing_in(1, 1);
+  for (const auto method : {PvsMethod::Conservative, PvsMethod::Combined}) {
+    const Judged j = judge(m, method, true);
+    ASSERT_EQ(j.vis.partition.cells.size(), 2u);
+    EXPECT_TRUE(j.vis.graph.portals.empty()) << pvs_method_name(method);
+    EXPECT_EQ(j.missed, 0u);
+    // Room A's PVS: its own five inward faces and the divider's face towards it; not room B's, and not the
+    // divider's back (turned away from all of room A).
+    const std::uint32_t a = locate(j.vis.partition.nodes, {1, 1, 1});
+    EXPECT_EQ(j.vis.pvs[a].size(), 6u) << pvs_method_name(method);
+    EXPECT_FALSE(has(j.vis.pvs[a], 7u));  // the divider facing B
+    EXPECT_TRUE(has(j.vis.pvs[a], 6u));   // the divider facing A
+  }
+}
+
+TEST(Pvs, OneSidedWallIsAOneWayPortal) {
+  // The divider faces room A only: from room B the renderer sees its back, culls it, and shows room A.
+  const MiniBuilding m = two_rooms_facing_in(1, 0);
+  for (const auto method : {PvsMethod::Conservative, PvsMethod::Combined}) {
+    const Judged j = judge(m, method, true);
+    ASSERT_EQ(j.vis.partition.cells.size(), 2u);
+    ASSERT_EQ(j.vis.graph.portals.size(), 1u);
+    const Portal& p = j.vis.graph.portals[0];
+    EXPECT_FALSE(p.forward);  // from A (the -x side) sight lines meet the divider's front
+    EXPECT_TRUE(p.backward);  // from B they pass its back
+    EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
+    const std::uint32_t a = locate(j.vis.partition.nodes, {1, 1, 1});
+    const std::uint32_t b = locate(j.vis.partition.nodes, {6, 1, 1});
+    EXPECT_FALSE(has(j.vis.pvs[a], 1u))
+        << pvs_method_name(method);      // room B's far wall (x = 8), out of room A's sight
+    EXPECT_TRUE(has(j.vis.pvs[b], 0u));  // room A's far wall (x = 0), seen from B through the divider
+    for (std::size_t c = 0; c < j.exact.size(); ++c)
+      for (const auto e : j.exact[c]) EXPECT_TRUE(has(j.vis.pvs[c], e)) << "cell " << c << " polygon " << e;
+  }
+  // Drawn from both sides, the divider closes the face both ways: no portal.
+  const Judged two_sided = judge(m, PvsMethod::Conservative, false);
+  EXPECT_TRUE(two_sided.vis.graph.portals.empty());
 }
 
 TEST(Pvs, ComputeCellsFillsTheBundleSections) {

@@ -104,6 +104,33 @@ TEST(VisibilityPredicates, SeparatorsOfCoplanarOrDegeneratePortalsAreNone) {
   EXPECT_TRUE(seps.empty());
 }
 
+TEST(VisibilityPredicates, FacesAwayFromABox) {
+  // A unit square in z = 1 facing +z (counter-clockwise seen from above).
+  VisPolygon up;
+  up.triangles = {{model::Vec3{0, 0, 1}, model::Vec3{1, 0, 1}, model::Vec3{1, 1, 1}},
+                  {model::Vec3{0, 0, 1}, model::Vec3{1, 1, 1}, model::Vec3{0, 1, 1}}};
+  EXPECT_TRUE(faces_away_from(up, Box{{0, 0, -2}, {3, 3, 0}}));    // wholly below
+  EXPECT_TRUE(faces_away_from(up, Box{{0, 0, 0}, {3, 3, 1}}));     // touching its plane from below: edge-on
+  EXPECT_FALSE(faces_away_from(up, Box{{0, 0, 0}, {3, 3, 1.5}}));  // reaching above it
+  EXPECT_FALSE(faces_away_from(up, Box{{0, 0, 2}, {1, 1, 3}}));    // wholly above
+  EXPECT_FALSE(
+      faces_away_from(up, Box{{5, 5, 0.999}, {6, 6, 1.001}}));  // straddling its plane off to the side
+  // A bent polygon faces away only if every triangle does: tilt one up past the box's top.
+  VisPolygon bent = up;
+  bent.triangles[1][2] = {0, 1, 3};
+  EXPECT_TRUE(faces_away_from(up, Box{{0, 0, -2}, {3, 3, 0.9}}));
+  EXPECT_FALSE(faces_away_from(bent, Box{{0, 0, -2}, {3, 3, 0.9}}));
+  // Zero-area triangles draw nothing: they neither keep nor drop the polygon, and a polygon of nothing else
+  // may go; a polygon with no triangles at all is kept (nothing to decide on).
+  VisPolygon flat = up;
+  flat.triangles.push_back({model::Vec3{0, 0, 1}, model::Vec3{1, 0, 1}, model::Vec3{2, 0, 1}});
+  EXPECT_TRUE(faces_away_from(flat, Box{{0, 0, -2}, {3, 3, 0}}));
+  VisPolygon only_flat;
+  only_flat.triangles = {{model::Vec3{0, 0, 1}, model::Vec3{1, 0, 1}, model::Vec3{2, 0, 1}}};
+  EXPECT_TRUE(faces_away_from(only_flat, Box{{0, 0, -2}, {3, 3, 0}}));
+  EXPECT_FALSE(faces_away_from(VisPolygon{}, Box{{0, 0, -2}, {3, 3, 0}}));
+}
+
 TEST(VisibilityPredicates, BoxContainsAndOverlapsOnFaces) {
   const Box b{{0, 0, 0}, {1, 1, 1}};
   EXPECT_TRUE(b.contains({1, 1, 1}));

@@ -37,8 +37,9 @@ struct MiniBuilding {
 
   // Axis-aligned rectangle in the plane `axis` = coord, spanning [u0,u1] x [v0,v1] of the other two axes
   // (u = (axis+1)%3, v = (axis+2)%3).
+  // It faces +axis; `facing` -1 turns it round.
   std::uint32_t rect(int axis, double coord, double u0, double u1, double v0, double v1,
-                     model::Role role = model::Role::Opaque) {
+                     model::Role role = model::Role::Opaque, int facing = 1) {
     auto p = [&](double u, double v) {
       model::Vec3 q{0.0};
       q[axis] = coord;
@@ -46,7 +47,17 @@ struct MiniBuilding {
       q[(axis + 2) % 3] = v;
       return q;
     };
+    if (facing < 0) return quad(p(u0, v0), p(u0, v1), p(u1, v1), p(u1, v0), role);
     return quad(p(u0, v0), p(u1, v0), p(u1, v1), p(u0, v1), role);
+  }
+
+  // The six faces of a box room facing into it (a room as the renderer, culling back faces, shows it).
+  void room_inward(model::Vec3 lo, model::Vec3 hi) {
+    for (int a = 0; a < 3; ++a) {
+      const int u = (a + 1) % 3, v = (a + 2) % 3;
+      rect(a, lo[a], lo[u], hi[u], lo[v], hi[v], model::Role::Opaque, 1);
+      rect(a, hi[a], lo[u], hi[u], lo[v], hi[v], model::Role::Opaque, -1);
+    }
   }
 
   // Rectangle with a rectangular hole (the hole must lie inside), as up to four rectangles around it.
@@ -69,8 +80,13 @@ struct MiniBuilding {
 };
 
 // Polygons the flow and the sampling need not be asked about: every test checks the PVS against ID images.
-inline VisibilityConfig test_config(PvsMethod method = PvsMethod::Conservative) {
+// The mini buildings' walls are single quads standing for solid walls, so by default they are judged as
+// drawn from both sides (`cull_back_faces` false here and in the tests' judges); the tests of back-face
+// culling build walls facing the way a renderer that culls them needs.
+inline VisibilityConfig test_config(PvsMethod method = PvsMethod::Conservative,
+                                    bool cull_back_faces = false) {
   VisibilityConfig c;
+  c.cull_back_faces = cull_back_faces;
   c.method = method;
   c.threads = 1;
   c.sample_points = 8;
