@@ -126,7 +126,7 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
                        RayHit* best) const {
   double limit = tmax;
   bool any = false;
-  blocks_.walk(
+  blocks_.walk<!kAny>(
       o, d, tmin, limit,
       [&](int k, std::uint32_t first, std::uint32_t count, double t, double pu, double pv) {
         for (std::uint32_t c = first; c < first + count; ++c) {
