@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "compiler/partition/axial_cover.hpp"
 
@@ -43,21 +44,12 @@ Box shared_face(const Box& a, const Box& b, int axis, double coord) {
   return r;
 }
 
-// Which opaque polygons of a plane close a face: all of them, or (back faces culled) only those whose
-// front a sight line going the given way meets.
-enum class Closing { All, FacingMinus, FacingPlus };
-
-// The open part of a face: rectangle minus the opaque polygons in its plane that close it, cracks removed.
+// The open part of a face: rectangle minus the opaque polygons in its plane, cracks removed.
 ClipperLib::Paths open_part(const Box& face, int axis, double coord, const Partition& part,
-                            const std::vector<VisPolygon>& polygons, bool glass_closes,
-                            Closing closing = Closing::All) {
+                            const std::vector<VisPolygon>& polygons, bool glass_closes) {
   ClipperLib::Paths region{rect_path(face, axis)};
   if (const AxialPlane* plane = find_plane(part.planes, axis, coord)) {
-    std::vector<std::uint32_t> opaque;
-    for (const auto id : plane->opaque)
-      if (closing == Closing::All || (closing == Closing::FacingMinus) == (polygons[id].normal[axis] < 0.0))
-        opaque.push_back(id);
-    region = subtract(region, union_of(opaque, polygons, axis, &face));
+    region = subtract(region, union_of(plane->opaque, polygons, axis, &face));
     if (glass_closes) region = subtract(region, union_of(plane->glass, polygons, axis, &face));
   }
   return open_region(region, kCrackRadius);
@@ -79,7 +71,23 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
         if (d == c || std::abs(cells[d].min[axis] - x) > kFaceTolerance) continue;
         const Box face = shared_face(cells[c], cells[d], axis, x);
         if (face.max[u] - face.min[u] <= 0.0 || face.max[v] - face.min[v] <= 0.0) continue;
-        const ClipperLib::Paths glass_open = open_part(face, axis, x, part, polygons, true);
+        // The plane's opaque polygons facing -axis and +axis, and its glass, each united once (the unions
+        // over diced triangles are the expensive part); the open regions below subtract what closes them.
+        ClipperLib::Paths minus, plus, glass;
+        if (const AxialPlane* plane = find_plane(part.planes, axis, x)) {
+          std::vector<std::uint32_t> minus_ids, plus_ids;
+          for (const auto id : plane->opaque)
+            (polygons[id].normal[axis] < 0.0 ? minus_ids : plus_ids).push_back(id);
+          minus = union_of(minus_ids, polygons, axis, &face);
+          plus = union_of(plus_ids, polygons, axis, &face);
+          glass = union_of(plane->glass, polygons, axis, &face);
+        }
+        auto open_without = [&](std::initializer_list<const ClipperLib::Paths*> closers) {
+          ClipperLib::Paths region{rect_path(face, axis)};
+          for (const auto* c : closers) region = subtract(region, *c);
+          return open_region(region, kCrackRadius);
+        };
+        const ClipperLib::Paths glass_open = open_without({&minus, &plus, &glass});
         // Portals over `open`, passable forward (back cell to front cell) and/or backward.
         auto emit = [&](const ClipperLib::Paths& open, bool forward, bool backward) {
           ClipperLib::PolyTree tree;
@@ -119,18 +127,15 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
             g.portals.push_back(std::move(p));
           }
         };
-        const ClipperLib::Paths both = open_part(face, axis, x, part, polygons, false);
+        const ClipperLib::Paths both = open_without({&minus, &plus});
         emit(both, true, true);
         if (cull_back_faces) {
-          // A sight line going +axis meets the fronts of polygons facing -axis; the rest it passes.
-          const auto forward = open_region(
-              subtract(open_part(face, axis, x, part, polygons, false, Closing::FacingMinus), both),
-              kCrackRadius);
-          const auto backward = open_region(
-              subtract(open_part(face, axis, x, part, polygons, false, Closing::FacingPlus), both),
-              kCrackRadius);
-          emit(forward, true, false);
-          emit(backward, false, true);
+          // A sight line going +axis meets the fronts of polygons facing -axis and passes the rest; where
+          // only one facing covers the face, the portal is one-way.
+          if (!plus.empty())
+            emit(open_region(subtract(open_without({&minus}), both), kCrackRadius), true, false);
+          if (!minus.empty())
+            emit(open_region(subtract(open_without({&plus}), both), kCrackRadius), false, true);
         }
       }
       // The outer boundary: open parts there (neither opaque nor glass) are leaks.
