@@ -44,14 +44,31 @@ Box shared_face(const Box& a, const Box& b, int axis, double coord) {
   return r;
 }
 
-// The open part of a face: rectangle minus the opaque polygons in its plane, cracks removed.
-ClipperLib::Paths open_part(const Box& face, int axis, double coord, const Partition& part,
-                            const std::vector<VisPolygon>& polygons, bool glass_closes) {
-  ClipperLib::Paths region{rect_path(face, axis)};
+// What can close a face, each united once (the unions over diced triangles are the expensive part): the
+// opaque polygons of its plane facing -axis, those facing +axis, and the plane's glass.
+struct FaceClosers {
+  ClipperLib::Paths minus, plus, glass;
+};
+
+FaceClosers face_closers(const Box& face, int axis, double coord, const Partition& part,
+                         const std::vector<VisPolygon>& polygons) {
+  FaceClosers k;
   if (const AxialPlane* plane = find_plane(part.planes, axis, coord)) {
-    region = subtract(region, union_of(plane->opaque, polygons, axis, &face));
-    if (glass_closes) region = subtract(region, union_of(plane->glass, polygons, axis, &face));
+    std::vector<std::uint32_t> minus_ids, plus_ids;
+    for (const auto id : plane->opaque)
+      (polygons[id].normal[axis] < 0.0 ? minus_ids : plus_ids).push_back(id);
+    k.minus = union_of(minus_ids, polygons, axis, &face);
+    k.plus = union_of(plus_ids, polygons, axis, &face);
+    k.glass = union_of(plane->glass, polygons, axis, &face);
   }
+  return k;
+}
+
+// The open part of a face: its rectangle minus `closers`, cracks removed.
+ClipperLib::Paths open_without(const Box& face, int axis,
+                               std::initializer_list<const ClipperLib::Paths*> closers) {
+  ClipperLib::Paths region{rect_path(face, axis)};
+  for (const auto* c : closers) region = subtract(region, *c);
   return open_region(region, kCrackRadius);
 }
 
@@ -71,29 +88,14 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
         if (d == c || std::abs(cells[d].min[axis] - x) > kFaceTolerance) continue;
         const Box face = shared_face(cells[c], cells[d], axis, x);
         if (face.max[u] - face.min[u] <= 0.0 || face.max[v] - face.min[v] <= 0.0) continue;
-        // The plane's opaque polygons facing -axis and +axis, and its glass, each united once (the unions
-        // over diced triangles are the expensive part); the open regions below subtract what closes them.
-        ClipperLib::Paths minus, plus, glass;
-        if (const AxialPlane* plane = find_plane(part.planes, axis, x)) {
-          std::vector<std::uint32_t> minus_ids, plus_ids;
-          for (const auto id : plane->opaque)
-            (polygons[id].normal[axis] < 0.0 ? minus_ids : plus_ids).push_back(id);
-          minus = union_of(minus_ids, polygons, axis, &face);
-          plus = union_of(plus_ids, polygons, axis, &face);
-          glass = union_of(plane->glass, polygons, axis, &face);
-        }
-        auto open_without = [&](std::initializer_list<const ClipperLib::Paths*> closers) {
-          ClipperLib::Paths region{rect_path(face, axis)};
-          for (const auto* c : closers) region = subtract(region, *c);
-          return open_region(region, kCrackRadius);
-        };
-        const ClipperLib::Paths glass_open = open_without({&minus, &plus, &glass});
+        const FaceClosers k = face_closers(face, axis, x, part, polygons);
+        const ClipperLib::Paths glass_open = open_without(face, axis, {&k.minus, &k.plus, &k.glass});
         // Portals over `open`, passable forward (back cell to front cell) and/or backward.
         auto emit = [&](const ClipperLib::Paths& open, bool forward, bool backward) {
           ClipperLib::PolyTree tree;
-          ClipperLib::Clipper k;
-          k.AddPaths(open, ClipperLib::ptSubject, true);
-          k.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+          ClipperLib::Clipper un;
+          un.AddPaths(open, ClipperLib::ptSubject, true);
+          un.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
           for (const ClipperLib::PolyNode* outer : tree.Childs) {
             Portal p;
             p.back = c;
@@ -127,15 +129,16 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
             g.portals.push_back(std::move(p));
           }
         };
-        const ClipperLib::Paths both = open_without({&minus, &plus});
+        const ClipperLib::Paths both = open_without(face, axis, {&k.minus, &k.plus});
         emit(both, true, true);
         if (cull_back_faces) {
           // A sight line going +axis meets the fronts of polygons facing -axis and passes the rest; where
           // only one facing covers the face, the portal is one-way.
-          if (!plus.empty())
-            emit(open_region(subtract(open_without({&minus}), both), kCrackRadius), true, false);
-          if (!minus.empty())
-            emit(open_region(subtract(open_without({&plus}), both), kCrackRadius), false, true);
+          if (!k.plus.empty())
+            emit(open_region(subtract(open_without(face, axis, {&k.minus}), both), kCrackRadius), true,
+                 false);
+          if (!k.minus.empty())
+            emit(open_region(subtract(open_without(face, axis, {&k.plus}), both), kCrackRadius), false, true);
         }
       }
       // The outer boundary: open parts there (neither opaque nor glass) are leaks.
@@ -145,7 +148,8 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
         if (std::abs(at - edge) > kFaceTolerance) continue;
         Box face = cells[c];
         face.min[axis] = face.max[axis] = at;
-        for (const auto& path : open_part(face, axis, at, part, polygons, true)) {
+        const FaceClosers k = face_closers(face, axis, at, part, polygons);
+        for (const auto& path : open_without(face, axis, {&k.minus, &k.plus, &k.glass})) {
           const double area = std::abs(ClipperLib::Area(path)) / (kAxialClipperScale * kAxialClipperScale);
           if (area < kMinOpeningArea || !ClipperLib::Orientation(path)) continue;
           model::Vec3 centre{0.0};

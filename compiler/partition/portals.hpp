@@ -29,6 +29,8 @@ struct Portal {
   // boundary is covered by polygons facing one way only, the portal there is one-way.
   bool forward = true;
   bool backward = true;
+  // Do sight lines pass from `cell` (one of its two) out through it?
+  [[nodiscard]] bool open_from(std::uint32_t cell) const { return cell == back ? forward : backward; }
 };
 
 struct Leak {

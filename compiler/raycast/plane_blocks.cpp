@@ -126,7 +126,7 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
   std::vector<std::uint32_t> start(count * 3 + 1, 0);
   for (std::size_t j = 0; j < listed.size(); ++j) ++start[listed[j].block * 3 + axis_of[j] + 1];
   for (std::size_t c = 0; c < count * 3; ++c) start[c + 1] += start[c];
-  blocks_.resize(count);
+  blocks_.resize(count);  // value-initialised: an empty block's ranges are all zero
   for (std::size_t blk = 0; blk < count; ++blk) {
     blocks_[blk].first = start[blk * 3];
     for (int k = 0; k < 3; ++k) blocks_[blk].end[k] = start[blk * 3 + k + 1];
@@ -135,7 +135,6 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
   std::vector<std::uint32_t> order(listed.size());
   for (std::size_t j = 0; j < listed.size(); ++j) order[start[listed[j].block * 3 + axis_of[j]]++] = j;
   entries_.reserve(listed.size());
-  for (std::size_t blk = 0; blk < count; ++blk) blocks_[blk].items_first = blocks_[blk].items_end = 0;
   for (const std::uint32_t j : order) {  // items laid out in entry order: a block's reads are close together
     Entry e = listed[j].entry;
     e.first = static_cast<std::uint32_t>(items_.size());

@@ -36,9 +36,8 @@ std::string VisibilityResult::summary() const {
   return fmt::format(
       "{} cells (depth {}, {} candidate planes), {} portals, {} leaks, PVS avg {:.0f} worst {} of {} "
       "polygons; "
-      "flow {} steps, {} fallbacks; {} sample rays; {} back faces dropped; partition {:.2f} s portals {:.2f} "
-      "s "
-      "pvs {:.2f} s",
+      "flow {} steps, {} fallbacks; {} sample rays; {} back faces dropped; "
+      "partition {:.2f} s portals {:.2f} s pvs {:.2f} s",
       partition.cells.size(), partition.depth, partition.candidates, graph.portals.size(), graph.leaks.size(),
       avg, worst, polygons.size(), flow_steps, flow_fallbacks, sample_rays, back_faces_dropped,
       seconds_partition, seconds_portals, seconds_pvs);

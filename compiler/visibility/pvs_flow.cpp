@@ -25,7 +25,7 @@ class Flow {
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
       for (const auto id : g.cell_portals[c]) {
         const Portal& p = g.portals[id];
-        if (p.back == c ? !p.forward : !p.backward) continue;  // one-way, the other way
+        if (!p.open_from(c)) continue;  // one-way, the other way
         out_[c].push_back({&p.hull,
                            axial_plane(p.axis, p.coord, p.back == c ? 1.0 : -1.0),
                            p.back == c ? p.front : p.back,

@@ -62,10 +62,8 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
     // Points on portals aim out of the cell: only portals open that way (a one-way portal the other way is
     // a wall's front seen from this side).
     std::vector<std::uint32_t> portals;
-    for (const auto id : graph.cell_portals[c]) {
-      const Portal& p = graph.portals[id];
-      if (p.back == c ? p.forward : p.backward) portals.push_back(id);
-    }
+    for (const auto id : graph.cell_portals[c])
+      if (graph.portals[id].open_from(static_cast<std::uint32_t>(c))) portals.push_back(id);
     for (int i = 0; i < options.points; ++i) {
       model::Vec3 origin;
       model::Vec3 out_normal{0.0};  // points on a portal aim out of the cell through it

@@ -10,12 +10,10 @@ RayHit trace_through_glass(const RayCaster& caster, Ray ray, const std::vector<c
     if (!h.hit()) return RayHit{};
     last = h;
     const bool see_through = h.polygon < glass.size() && glass[h.polygon];
-    if (cull_back_faces && !h.front && !see_through) {
-      ray.tmin = h.t + self_hit_tmin(ray.dir);  // not drawn: what lies behind shows
-      continue;
+    if (!cull_back_faces || h.front || see_through) {  // else not drawn: what lies behind shows
+      ids.push_back(h.polygon);
+      if (!see_through) return h;
     }
-    ids.push_back(h.polygon);
-    if (!see_through) return h;
     ray.tmin = h.t + self_hit_tmin(ray.dir);
   }
   return last;

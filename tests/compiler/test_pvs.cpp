@@ -21,9 +21,7 @@ VerifyOptions small_judge(bool cull_back_faces = false) {
   o.resolution = 48;
   o.dense = 2;
   o.dense_resolution = 24;
-  // Seeing past back faces relies on the tie rule (of two back-to-back walls the one facing the ray wins),
-  // which the axial caster keeps and the skeleton's BVH does not.
-  o.ray_caster = cull_back_faces ? "axial" : "bvh";
+  o.ray_caster = test_config(PvsMethod::Conservative, cull_back_faces).ray_caster;  // see test_config
   o.threads = 1;
   return o;
 }
@@ -36,9 +34,7 @@ struct Judged {
 
 Judged judge(const MiniBuilding& m, PvsMethod method, bool cull_back_faces = false) {
   Judged j;
-  VisibilityConfig config = test_config(method, cull_back_faces);
-  if (cull_back_faces) config.ray_caster = "axial";
-  j.vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+  j.vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, test_config(method, cull_back_faces));
   const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(cull_back_faces));
   for (std::uint32_t c = 0; c < j.vis.partition.cells.size(); ++c) {
     const CellViews v = judge.views(j.vis.partition.cells[c], c);
