@@ -16,6 +16,7 @@
 #include "compiler/geometry/coarse_mesh.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/openings.hpp"
+#include "compiler/geometry/t_junctions.hpp"
 #include "compiler/import/import_model.hpp"
 #include "compiler/lighting/direct_light.hpp"
 #include "compiler/radiosity/compact_light.hpp"
@@ -172,6 +173,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
                           "empty model: no opaque or glass faces after the scene's rules",
                           "check the [[rules]] in " + config.path));
   }
+  double weld_tolerance = 0.0;  // metres; clean-up's, which also sets what counts as a vertex on a seam
   {
     // After the rules, which drop annotation layers (so they do not set the weld tolerance) and install the
     // config's materials (the file's own come back after them).
@@ -179,6 +181,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     append_imported_materials(model, config, imported);
     const std::size_t before = model.polygons.size();
     const CleanupStats s = clean_up(model, config.weld_metres);
+    weld_tolerance = s.weld_tolerance;
     t.done(before, model.polygons.size(), s.summary());
   }
   {
@@ -239,9 +242,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       panel_luminaire.push_back(i);
     }
     std::size_t coarse_fallbacks = 0;
-    auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire) {
+    auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh) {
       const double cell_size = poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid;
-      const PolygonMesh mesh = mesh_polygon(poly, cell_size);
       if (mesh.triangles.empty()) return;
       const auto id = static_cast<std::uint32_t>(out.polygons.size());
       const auto first_vertex = static_cast<std::uint32_t>(out.vertices.size());
@@ -315,13 +317,25 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       r.circuit = l.circuit;
       out.luminaires.push_back(r);
     }
+    std::vector<std::pair<const model::Polygon*, std::uint32_t>> to_emit;  // (polygon, luminaire or none)
     for (const auto& p : model.polygons)
-      if (drawn(p.role)) emit(p, UINT32_MAX);
-    for (std::uint32_t i = 0; i < panels.size(); ++i) emit(panels[i], panel_luminaire[i]);
+      if (drawn(p.role)) to_emit.emplace_back(&p, UINT32_MAX);
+    for (std::uint32_t i = 0; i < panels.size(); ++i) to_emit.emplace_back(&panels[i], panel_luminaire[i]);
+    std::vector<PolygonMesh> meshes;
+    meshes.reserve(to_emit.size());
+    for (const auto& [poly, luminaire] : to_emit)
+      meshes.push_back(
+          mesh_polygon(*poly, poly->role == model::Role::Luminaire ? 0.0 : config.lighting.grid));
+    // Seams between polygons diced apart: vertices that lie on a neighbour's edge within the weld distance
+    // become vertices of that edge too, so float rounding cannot open a crack along a slanted seam.
+    const TJunctionStats seams = repair_t_junctions(meshes, weld_tolerance);
+    for (std::size_t i = 0; i < to_emit.size(); ++i) emit(*to_emit[i].first, to_emit[i].second, meshes[i]);
     t.done(model.polygons.size() + panels.size(), out.polygons.size(),
-           fmt::format("{} vertices {} triangles grid {} m; coarse {} triangles ({} polygons kept diced)",
+           fmt::format("{} vertices {} triangles grid {} m; coarse {} triangles ({} polygons kept diced); "
+                       "T-junctions {} vertices into {} triangles",
                        out.vertices.size(), out.indices.size() / 3, config.lighting.grid,
-                       out.coarse_indices.size() / 3, coarse_fallbacks));
+                       out.coarse_indices.size() / 3, coarse_fallbacks, seams.vertices_inserted,
+                       seams.triangles_split));
   }
 
   const std::size_t circuits = model.circuits.size();

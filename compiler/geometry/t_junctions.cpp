@@ -1,0 +1,317 @@
+#include "compiler/geometry/t_junctions.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <glm/geometric.hpp>
+#include <optional>
+#include <span>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+namespace walk::compiler {
+namespace {
+
+using model::Vec3;
+using Triangle = std::array<std::uint32_t, 3>;
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  return (std::uint64_t(a) << 32) | b;
+}
+
+struct BoundaryEdge {
+  std::uint32_t a = 0, b = 0;  // directed as in its triangle
+  std::uint32_t triangle = 0;
+};
+
+// Edges of a mesh without their reverse in the same mesh: the polygon's outline and its holes.
+std::vector<BoundaryEdge> boundary_edges(const PolygonMesh& mesh) {
+  std::unordered_set<std::uint64_t> edges;
+  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3)
+    for (int e = 0; e < 3; ++e)
+      edges.insert(edge_key(mesh.triangles[t + e], mesh.triangles[t + (e + 1) % 3]));
+  std::vector<BoundaryEdge> out;
+  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = mesh.triangles[t + e], b = mesh.triangles[t + (e + 1) % 3];
+      if (!edges.contains(edge_key(b, a))) out.push_back({a, b, static_cast<std::uint32_t>(t / 3)});
+    }
+  }
+  return out;
+}
+
+// Boundary vertices of all meshes in a hash grid of cubes of side `cell`: sorted (cell key, vertex) pairs.
+struct VertexGrid {
+  struct Entry {
+    std::uint64_t key;
+    std::uint32_t vertex;
+  };
+  double cell = 1.0;
+  std::vector<Entry> entries;
+
+  [[nodiscard]] std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x / cell)),
+            static_cast<std::int64_t>(std::floor(p.y / cell)),
+            static_cast<std::int64_t>(std::floor(p.z / cell))};
+  }
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    // 21 bits per axis, wrapped: distinct cells may share a key, which only adds candidates to reject.
+    constexpr std::uint64_t mask = (1u << 21) - 1;
+    return (std::uint64_t(x) & mask) | ((std::uint64_t(y) & mask) << 21) | ((std::uint64_t(z) & mask) << 42);
+  }
+  void build(const std::vector<Vec3>& points) {
+    entries.resize(points.size());
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+      const auto c = cell_of(points[i]);
+      entries[i] = {key(c[0], c[1], c[2]), i};
+    }
+    std::sort(entries.begin(), entries.end(), [](const Entry& l, const Entry& r) {
+      return l.key != r.key ? l.key < r.key : l.vertex < r.vertex;
+    });
+  }
+  // Every vertex within `cell` of a point of segment ab (and some farther), appended to `out`, unsorted.
+  void near_segment(const Vec3& a, const Vec3& b, std::vector<std::uint32_t>& out) const {
+    // Samples at most half a cell apart: a point within `cell / 2` of the segment is within a cell of a
+    // sample, so in one of the 27 cells around it.
+    const double length = glm::distance(a, b);
+    const auto steps = static_cast<std::size_t>(std::ceil(2.0 * length / cell));
+    for (std::size_t k = 0; k <= steps; ++k) {
+      const Vec3 p = steps == 0 ? a : a + (b - a) * (double(k) / double(steps));
+      const auto c = cell_of(p);
+      for (std::int64_t dx = -1; dx <= 1; ++dx)
+        for (std::int64_t dy = -1; dy <= 1; ++dy)
+          for (std::int64_t dz = -1; dz <= 1; ++dz) {
+            const std::uint64_t k2 = key(c[0] + dx, c[1] + dy, c[2] + dz);
+            auto it = std::lower_bound(entries.begin(), entries.end(), k2,
+                                       [](const Entry& e, std::uint64_t v) { return e.key < v; });
+            for (; it != entries.end() && it->key == k2; ++it) out.push_back(it->vertex);
+          }
+    }
+  }
+};
+
+struct Insertion {
+  double t = 0.0;            // along the edge, 0..1
+  std::uint32_t vertex = 0;  // global boundary vertex
+};
+
+// Splits `pieces` (which hold the directed edge a->b once) along that edge at `points`, fanning from the
+// piece's third corner. Orientation is kept: (a, x1, c), (x1, x2, c), ..., (xk, b, c).
+void split_edge(std::vector<Triangle>& pieces, std::uint32_t a, std::uint32_t b,
+                const std::vector<std::uint32_t>& points) {
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (int e = 0; e < 3; ++e) {
+      if (pieces[i][e] != a || pieces[i][(e + 1) % 3] != b) continue;
+      const std::uint32_t c = pieces[i][(e + 2) % 3];
+      pieces[i] = {a, points.front(), c};
+      std::uint32_t from = points.front();
+      for (std::size_t k = 1; k < points.size(); ++k) {
+        pieces.push_back({from, points[k], c});
+        from = points[k];
+      }
+      pieces.push_back({from, b, c});
+      return;
+    }
+  }
+}
+
+bool has_edge(const Triangle& t, std::uint32_t a, std::uint32_t b) {
+  for (int e = 0; e < 3; ++e)
+    if (t[e] == a && t[(e + 1) % 3] == b) return true;
+  return false;
+}
+
+Triangle triangle_at(const PolygonMesh& mesh, std::size_t t) {
+  return {mesh.triangles[3 * t], mesh.triangles[3 * t + 1], mesh.triangles[3 * t + 2]};
+}
+
+// The edge each triangle shares with its quad partner, paired as the renderer's find_quads pairs them:
+// scanning the list, a triangle and the next one are a pair when they share an edge, and the scan goes on
+// after the pair; otherwise it moves on by one. Unpaired triangles get no edge.
+using Edge = std::pair<std::uint32_t, std::uint32_t>;
+std::vector<std::optional<Edge>> quad_partner_edges(const PolygonMesh& mesh) {
+  const std::size_t count = mesh.triangles.size() / 3;
+  std::vector<std::optional<Edge>> out(count);
+  for (std::size_t t = 0; t + 1 < count;) {
+    const Triangle me = triangle_at(mesh, t), next = triangle_at(mesh, t + 1);
+    bool paired = false;
+    for (int e = 0; e < 3 && !paired; ++e) {
+      if (!has_edge(next, me[(e + 1) % 3], me[e])) continue;
+      out[t] = Edge(me[e], me[(e + 1) % 3]);
+      out[t + 1] = Edge(me[(e + 1) % 3], me[e]);
+      paired = true;
+    }
+    t += paired ? 2 : 1;
+  }
+  return out;
+}
+
+// The repair among the meshes of one plane (`group`: their indices).
+void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_t> group, double tolerance,
+                  TJunctionStats& stats) {
+  // Every mesh's boundary, and its boundary vertices numbered globally with their mesh.
+  std::vector<std::vector<BoundaryEdge>> edges(group.size());  // by place in the group
+  std::vector<Vec3> points;
+  std::vector<std::uint32_t> point_mesh, point_vertex;
+  double edge_length_sum = 0.0;
+  std::size_t edge_count = 0;
+  for (std::uint32_t g = 0; g < group.size(); ++g) {
+    const std::uint32_t m = group[g];
+    edges[g] = boundary_edges(meshes[m]);
+    std::vector<std::uint32_t> on_boundary;
+    for (const auto& e : edges[g]) {
+      on_boundary.push_back(e.a);
+      edge_length_sum += glm::distance(meshes[m].vertices[e.a], meshes[m].vertices[e.b]);
+      ++edge_count;
+    }
+    std::sort(on_boundary.begin(), on_boundary.end());
+    on_boundary.erase(std::unique(on_boundary.begin(), on_boundary.end()), on_boundary.end());
+    for (std::uint32_t v : on_boundary) {
+      points.push_back(meshes[m].vertices[v]);
+      point_mesh.push_back(g);
+      point_vertex.push_back(v);
+    }
+  }
+  if (edge_count == 0) return;
+  VertexGrid grid;
+  // Cells about a boundary edge long (one or two lookups per edge), never under twice the tolerance (the
+  // search reaches half a cell from the segment).
+  grid.cell = std::max(edge_length_sum / double(edge_count), 2.0 * tolerance);
+  if (!(grid.cell > 0.0)) return;
+  grid.build(points);
+
+  std::vector<std::uint32_t> near;
+  std::vector<Insertion> found;
+  for (std::uint32_t g = 0; g < group.size(); ++g) {
+    PolygonMesh& mesh = meshes[group[g]];
+    // Per triangle: the edges to split and the points on each, as this mesh's (possibly new) vertices.
+    std::unordered_map<
+        std::uint32_t,
+        std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>>>>
+        splits;
+    std::unordered_map<std::uint32_t, std::uint32_t> copy_of;  // global point -> this mesh's vertex
+    for (const auto& e : edges[g]) {
+      const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
+      // An edge along an axis keeps two coordinates, which float rounds alike for every point on it: its
+      // T-junctions cannot open. Splitting there would only add slivers and vertices.
+      if ((a.x == b.x) + (a.y == b.y) + (a.z == b.z) >= 2) continue;
+      const Vec3 d = b - a;
+      const double length2 = glm::dot(d, d);
+      if (!(length2 > 4.0 * tolerance * tolerance))
+        continue;  // no room for a point farther than tol from both ends
+      const double length = std::sqrt(length2);
+      near.clear();
+      grid.near_segment(a, b, near);
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+      found.clear();
+      for (std::uint32_t p : near) {
+        if (point_mesh[p] == g) continue;
+        if (std::abs(glm::dot(meshes[group[point_mesh[p]]].normal, mesh.normal)) < kSeamParallelCosine)
+          continue;
+        const Vec3& x = points[p];
+        const double t = glm::dot(x - a, d) / length2;
+        if (t * length <= tolerance || (1.0 - t) * length <= tolerance) continue;
+        if (glm::distance(x, a + d * t) > tolerance) continue;
+        if (std::abs(glm::dot(x - a, mesh.normal)) > kSeamNoise) continue;
+        found.push_back({t, p});
+      }
+      if (found.empty()) continue;
+      // Along the edge; points within kSeamNoise of each other (several meshes' copies of one corner) are
+      // one.
+      std::sort(found.begin(), found.end(), [&](const Insertion& l, const Insertion& r) {
+        if (l.t != r.t) return l.t < r.t;
+        const Vec3 &pl = points[l.vertex], &pr = points[r.vertex];
+        return std::tie(pl.x, pl.y, pl.z) < std::tie(pr.x, pr.y, pr.z);
+      });
+      found.erase(std::unique(found.begin(), found.end(),
+                              [&](const Insertion& l, const Insertion& r) {
+                                return glm::distance(points[l.vertex], points[r.vertex]) <= kSeamNoise;
+                              }),
+                  found.end());
+      std::vector<std::uint32_t> local;
+      for (const auto& f : found) {
+        auto [it, fresh] = copy_of.try_emplace(f.vertex, static_cast<std::uint32_t>(mesh.vertices.size()));
+        if (fresh) {
+          mesh.vertices.push_back(points[f.vertex]);
+          ++stats.vertices_inserted;
+        }
+        local.push_back(it->second);
+      }
+      splits[e.triangle].push_back({{e.a, e.b}, std::move(local)});
+    }
+    if (splits.empty()) continue;
+
+    const std::size_t count = mesh.triangles.size() / 3;
+    std::vector<Triangle> in_place(count), appended;
+    for (std::size_t t = 0; t < count; ++t) in_place[t] = triangle_at(mesh, t);
+    const auto partners = quad_partner_edges(mesh);
+    // Split triangles in list order, so the output does not hang on hashing.
+    std::vector<std::uint32_t> order;
+    for (const auto& [t, s] : splits) order.push_back(t);
+    std::sort(order.begin(), order.end());
+    for (std::uint32_t t : order) {
+      std::vector<Triangle> pieces{in_place[t]};
+      for (const auto& [edge, at] : splits[t]) split_edge(pieces, edge.first, edge.second, at);
+      const auto& partner = partners[t];
+      std::size_t keep = 0;
+      if (partner)
+        for (std::size_t i = 0; i < pieces.size(); ++i)
+          if (has_edge(pieces[i], partner->first, partner->second)) keep = i;
+      in_place[t] = pieces[keep];
+      for (std::size_t i = 0; i < pieces.size(); ++i)
+        if (i != keep) appended.push_back(pieces[i]);
+      ++stats.triangles_split;
+    }
+    mesh.triangles.clear();
+    for (const auto* list : {&in_place, &appended})
+      for (const auto& tri : *list) mesh.triangles.insert(mesh.triangles.end(), tri.begin(), tri.end());
+  }
+}
+
+}  // namespace
+
+TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double tolerance) {
+  TJunctionStats stats;
+  // Seams are only repaired between coplanar meshes, so the search runs per plane: meshes grouped by their
+  // normal (up to sign, in bins of 1e-6; two normals a hair apart in neighbouring bins are not joined, which
+  // leaves a seam unrepaired, as before) and then by offset along it, within kSeamNoise of the previous.
+  struct Key {
+    std::array<long long, 3> normal;
+    double offset;
+    std::uint32_t mesh;
+  };
+  std::vector<Key> keys;
+  for (std::uint32_t m = 0; m < meshes.size(); ++m) {
+    const PolygonMesh& mesh = meshes[m];
+    if (mesh.triangles.empty()) continue;
+    Vec3 n = mesh.normal;
+    int big = 0;
+    for (int a = 1; a < 3; ++a)
+      if (std::abs(n[a]) > std::abs(n[big])) big = a;
+    if (n[big] < 0.0) n = -n;
+    keys.push_back({{std::llround(n.x * 1e6), std::llround(n.y * 1e6), std::llround(n.z * 1e6)},
+                    glm::dot(n, mesh.vertices[mesh.triangles[0]]),
+                    m});
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& l, const Key& r) {
+    return l.normal != r.normal ? l.normal < r.normal : l.offset < r.offset;
+  });
+  std::vector<std::uint32_t> group;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const bool joins =
+        i > 0 && keys[i].normal == keys[i - 1].normal && keys[i].offset - keys[i - 1].offset <= kSeamNoise;
+    if (!joins) {
+      if (group.size() > 1) repair_plane(meshes, group, tolerance, stats);
+      group.clear();
+    }
+    group.push_back(keys[i].mesh);
+  }
+  if (group.size() > 1) repair_plane(meshes, group, tolerance, stats);
+  return stats;
+}
+
+}  // namespace walk::compiler

@@ -1,0 +1,43 @@
+#pragma once
+// T-junction repair across polygon meshes. Each polygon is diced on its own, so where two polygons abut, a
+// vertex of one lies on an edge of the other without being a vertex of it. In double precision the seam is
+// closed; once the bundle stores float coordinates, a vertex on a slanted edge is rounded off the line and
+// leaves a crack of micrometres that rays (and the GPU, as sparkle pixels) can pass through. Inserting every
+// such vertex into the edge it lies on makes both sides of a seam the same chain of identical vertices, which
+// float rounding cannot open, because a watertight triangle test never passes between two triangles that
+// share an edge.
+#include <cstddef>
+#include <vector>
+
+#include "compiler/geometry/mesher.hpp"
+
+namespace walk::compiler {
+
+// Double-precision noise of diced coordinates (about 1e-12 m in a 10 km model; metres). A vertex is inserted
+// only if it lies this close to the receiving polygon's plane: a neighbour's vertex a print step off the
+// plane (EnergyPlus: 10 um) would tilt the polygon's triangles off its plane and break exact predicates on
+// them (a wall no longer wholly facing away from the room behind it); float cracks are in-plane anyway.
+// Points this close to each other on one edge are one point: inserting both would cut a triangle of no area.
+inline constexpr double kSeamNoise = 1e-9;
+
+// Only coplanar neighbours (normals parallel within this cosine, either facing) give vertices. Where a wall
+// stands on a floor's slanted edge, inserting each into the other would cut slivers into the slanted wall
+// whose float-rounded normals tilt by up to a few percent (back-face tests then keep them) and whose extra
+// triangles all go to the ray caster's BSP. A crack in such a corner is left, as before.
+inline constexpr double kSeamParallelCosine = 1.0 - 1e-9;
+
+struct TJunctionStats {
+  std::size_t vertices_inserted = 0;  // vertex copies added to edges
+  std::size_t triangles_split = 0;    // triangles replaced by two or more
+};
+
+// Inserts into each mesh's boundary edges (edges without a twin in their own mesh) the boundary vertices of
+// the other meshes that lie within `tolerance` (metres) of the edge, farther than `tolerance` from both of
+// its ends and within kSeamNoise of the mesh's plane. An inserted vertex is an exact copy of the
+// other mesh's vertex, so both sides round alike. A split triangle keeps its place in the list with the piece
+// that holds the edge it shares with its quad partner (paired as the renderer pairs them to re-split quads),
+// so pairs stay pairs; the other pieces go to the end. Orientation is kept. Meshes with no neighbours within
+// tolerance are left exactly as they are.
+TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double tolerance);
+
+}  // namespace walk::compiler

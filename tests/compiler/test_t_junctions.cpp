@@ -1,0 +1,290 @@
+// T-junction repair across diced polygons: seams between coplanar polygons become shared chains of identical
+// vertices, so rays at a slanted seam cannot pass between float-rounded triangles. Degenerate inputs, area
+// and orientation, and the real EnergyPlus house's floors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <random>
+#include <set>
+#include <string>
+
+#include "compiler/geometry/mesher.hpp"
+#include "compiler/geometry/openings.hpp"
+#include "compiler/geometry/t_junctions.hpp"
+#include "compiler/import/dxf_reader.hpp"
+#include "compiler/raycast/ray_caster.hpp"
+
+namespace walk::compiler {
+namespace {
+
+using model::Polygon;
+using model::Vec3;
+
+// EnergyPlus scenes weld at 20 um; the repair's tolerance in the pipeline is the weld distance.
+constexpr double kTolerance = 2e-5;
+
+Polygon quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  Polygon p;
+  p.vertices = {a, b, c, d};
+  return p;
+}
+
+// Two floors at z = -0.2 meeting along a seam from (x0, 0) to (x1, 5), like the house's floors along the top
+// of a slanted basement wall (2 cm over 3.4 m).
+struct Seam {
+  Vec3 s0, s1;
+};
+std::vector<PolygonMesh> floors_along(const Seam& seam, double grid) {
+  const double z = seam.s0.z;
+  return {mesh_polygon(quad({0, 0, z}, seam.s0, seam.s1, {0, 5, z}), grid),
+          mesh_polygon(quad(seam.s0, {8, 0, z}, {8, 5, z}, seam.s1), grid)};
+}
+const Seam kHouseLikeSeam{{3.4, 0.0, -0.2}, {3.42, 5.0, -0.2}};
+std::vector<PolygonMesh> slanted_floors(double grid) {
+  return floors_along(kHouseLikeSeam, grid);
+}
+
+double area(const PolygonMesh& m) {
+  double sum = 0.0;
+  for (std::size_t t = 0; t + 2 < m.triangles.size(); t += 3) {
+    const Vec3 &a = m.vertices[m.triangles[t]], &b = m.vertices[m.triangles[t + 1]],
+               &c = m.vertices[m.triangles[t + 2]];
+    sum += 0.5 * glm::dot(glm::cross(b - a, c - a), m.normal);  // signed: a flipped triangle subtracts
+  }
+  return sum;
+}
+
+bool all_counter_clockwise(const PolygonMesh& m) {
+  for (std::size_t t = 0; t + 2 < m.triangles.size(); t += 3) {
+    const Vec3 &a = m.vertices[m.triangles[t]], &b = m.vertices[m.triangles[t + 1]],
+               &c = m.vertices[m.triangles[t + 2]];
+    if (!(glm::dot(glm::cross(b - a, c - a), m.normal) > 0.0)) return false;
+  }
+  return true;
+}
+
+// Edges of a mesh's triangles without their reverse in the same mesh: its outline and holes.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> outline_edges(const PolygonMesh& mesh) {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> all;
+  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3)
+    for (int e = 0; e < 3; ++e) all.insert({mesh.triangles[t + e], mesh.triangles[t + (e + 1) % 3]});
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (const auto& [a, b] : all)
+    if (!all.contains({b, a})) out.push_back({a, b});
+  return out;
+}
+
+double outline_length(const PolygonMesh& mesh) {
+  double sum = 0.0;
+  for (const auto& [a, b] : outline_edges(mesh)) sum += glm::distance(mesh.vertices[a], mesh.vertices[b]);
+  return sum;
+}
+
+// Vertices of one mesh lying inside a slanted outline edge of a coplanar other mesh (open T-junctions), by
+// brute force.
+std::size_t open_t_junctions(const std::vector<PolygonMesh>& meshes) {
+  std::size_t open = 0;
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const auto& mesh = meshes[m];
+    for (const auto& [ia, ib] : outline_edges(mesh)) {
+      const Vec3 a = mesh.vertices[ia], b = mesh.vertices[ib];
+      if ((a.x == b.x) + (a.y == b.y) + (a.z == b.z) >= 2) continue;
+      const Vec3 d = b - a;
+      const double len = glm::length(d);
+      for (std::size_t o = 0; o < meshes.size(); ++o) {
+        if (o == m || std::abs(glm::dot(meshes[o].normal, mesh.normal)) < kSeamParallelCosine) continue;
+        for (const Vec3& x : meshes[o].vertices) {
+          const double s = glm::dot(x - a, d) / (len * len);
+          if (s * len <= kTolerance || (1 - s) * len <= kTolerance) continue;
+          if (std::abs(glm::dot(x - a, mesh.normal)) > kSeamNoise) continue;
+          if (glm::distance(x, a + d * s) <= kTolerance) ++open;
+        }
+      }
+    }
+  }
+  return open;
+}
+
+// The meshes as the bundle stores them: float vertices, read back in double.
+std::vector<Triangle> as_float_triangles(const std::vector<PolygonMesh>& meshes) {
+  std::vector<Triangle> out;
+  auto rounded = [](const Vec3& v) { return Vec3(glm::vec3(v)); };
+  for (std::uint32_t m = 0; m < meshes.size(); ++m) {
+    const auto& mesh = meshes[m];
+    for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3)
+      out.push_back({rounded(mesh.vertices[mesh.triangles[t]]), rounded(mesh.vertices[mesh.triangles[t + 1]]),
+                     rounded(mesh.vertices[mesh.triangles[t + 2]]), m});
+  }
+  return out;
+}
+
+// Rays from above aimed at points of the seam line: how many pass through the floor.
+std::size_t rays_through_seam(const std::vector<PolygonMesh>& meshes, Vec3 s0, Vec3 s1, std::size_t count) {
+  const auto caster = make_ray_caster("brute", as_float_triangles(meshes));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), tilt(-0.5, 0.5);
+  std::size_t through = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 target = s0 + (s1 - s0) * unit(rng);
+    const Vec3 origin = target + Vec3(tilt(rng), tilt(rng), 1.0);
+    if (!caster->occluded({origin, (target - origin) * 2.0, 0.0, 1.0})) ++through;
+  }
+  return through;
+}
+
+// The mesher's vertices come out of Clipper's integer grid (1e-7 m steps in the plane) and are stored in
+// float: along a slanted seam each side's vertices stray from the line by up to 3e-7 m, and where the two
+// sides stray apart, a ray aimed at the seam passes between them. These seams are ones where that happens
+// (found by sweeping offsets and slopes); the house-like one happens to overlap instead.
+TEST(TJunctions, SlantedSeamsBetweenDicedFloorsAreClosedInFloat) {
+  const std::vector<Seam> seams{kHouseLikeSeam,
+                                {{3.4, 0.0, -0.2}, {3.4131, 5.0, -0.2}},
+                                {{3.4, 0.0, -0.2}, {4.5, 5.0, -0.2}},
+                                {{3.43, 0.0, -0.2}, {3.06, 5.0, -0.2}},
+                                {{2.917, 0.0, -0.2}, {2.547, 5.0, -0.2}},
+                                {{1.3, 0.0, 2.7}, {0.93, 5.0, 2.7}}};
+  std::size_t through_before = 0;
+  for (const Seam& seam : seams) {
+    std::vector<PolygonMesh> meshes = floors_along(seam, 0.4);
+    // Diced apart, each floor's seam vertices lie inside the other's seam edges.
+    EXPECT_GT(open_t_junctions(meshes), 10u);
+    through_before += rays_through_seam(meshes, seam.s0, seam.s1, 20000);
+
+    const double area0 = area(meshes[0]), area1 = area(meshes[1]);
+    const TJunctionStats stats = repair_t_junctions(meshes, kTolerance);
+    EXPECT_GT(stats.vertices_inserted, 10u);
+    EXPECT_GT(stats.triangles_split, 0u);
+    EXPECT_EQ(open_t_junctions(meshes), 0u);
+    EXPECT_EQ(rays_through_seam(meshes, seam.s0, seam.s1, 50000), 0u) << seam.s1.x;
+    // The same surface (to the vertices' stray from the line), facing the same way: a folded piece would
+    // subtract its area and fail the orientation check.
+    EXPECT_NEAR(area(meshes[0]), area0, kTolerance * outline_length(meshes[0]));
+    EXPECT_NEAR(area(meshes[1]), area1, kTolerance * outline_length(meshes[1]));
+    EXPECT_TRUE(all_counter_clockwise(meshes[0]));
+    EXPECT_TRUE(all_counter_clockwise(meshes[1]));
+    // Running again finds nothing left to do.
+    EXPECT_EQ(repair_t_junctions(meshes, kTolerance).vertices_inserted, 0u);
+  }
+  EXPECT_GT(through_before, 1000u) << "the crack this repair exists for";
+}
+
+TEST(TJunctions, SplitTrianglesKeepTheirQuadPartnersNextToThem) {
+  // A polygon diced into quads (pairs of triangles in a row), its neighbour diced finer along a slanted seam.
+  std::vector<PolygonMesh> meshes = slanted_floors(0.4);
+  const std::size_t count = meshes[0].triangles.size() / 3;
+  auto pairs = [](const PolygonMesh& m, std::size_t n) {
+    std::size_t shared = 0;  // consecutive triangles (0,1), (2,3), ... sharing an edge
+    for (std::size_t t = 0; t + 1 < n; t += 2) {
+      std::size_t common = 0;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) common += m.triangles[3 * t + i] == m.triangles[3 * (t + 1) + j];
+      shared += common == 2;
+    }
+    return shared;
+  };
+  const std::size_t before = pairs(meshes[0], count);
+  repair_t_junctions(meshes, kTolerance);
+  EXPECT_EQ(pairs(meshes[0], count), before);
+  EXPECT_GT(meshes[0].triangles.size() / 3, count);
+}
+
+TEST(TJunctions, WhatIsNotOnTheEdgeStaysOut) {
+  const double z = 0.0;
+  // A slanted edge from (0,0) to (4,1): mesh A is the triangle below it, mesh B supplies test points.
+  auto with_point = [&](const Vec3& x) {
+    PolygonMesh a;
+    a.vertices = {{0, 0, z}, {4, 0, z}, {4, 1, z}};
+    a.triangles = {0, 1, 2};
+    PolygonMesh b;  // a sliver triangle whose first corner is the point under test, same plane and facing
+    b.vertices = {x, x + Vec3(-1, 3, 0), x + Vec3(-2, 3, 0)};
+    b.triangles = {0, 1, 2};
+    std::vector<PolygonMesh> meshes{a, b};
+    return repair_t_junctions(meshes, kTolerance).vertices_inserted;
+  };
+  const Vec3 a{0, 0, z}, c{4, 1, z};
+  const Vec3 off = glm::normalize(Vec3(-1, 4, 0));                          // in-plane normal of the edge a-c
+  EXPECT_EQ(with_point(a + (c - a) * 0.5), 1u);                             // on the edge
+  EXPECT_EQ(with_point(a + (c - a) * 0.5 + off * (0.9 * kTolerance)), 1u);  // just off it
+  EXPECT_EQ(with_point(a + (c - a) * 0.5 + off * (1.1 * kTolerance)), 0u);  // beyond tolerance
+  EXPECT_EQ(with_point(a), 0u);                                             // an end of the edge
+  EXPECT_EQ(with_point(a + glm::normalize(c - a) * (0.5 * kTolerance)), 0u);  // within tolerance of an end
+  EXPECT_EQ(with_point(a - (c - a) * 0.1), 0u);                               // on the line, before a
+  EXPECT_EQ(with_point(c + (c - a) * 0.1), 0u);                               // on the line, past c
+  EXPECT_EQ(with_point(a + (c - a) * 0.5 + Vec3(0, 0, 1e-6)), 0u);            // off the plane
+
+  // A neighbour in another plane (a wall standing on the edge) gives nothing: its vertex is on the edge but
+  // the repair only joins coplanar polygons.
+  PolygonMesh floor;
+  floor.vertices = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}};
+  floor.triangles = {0, 1, 2};
+  PolygonMesh wall;
+  wall.vertices = {{2, 0.5, 0}, {2, 0.5, 3}, {6, 1.5, 3}};
+  wall.normal =
+      glm::normalize(glm::cross(wall.vertices[1] - wall.vertices[0], wall.vertices[2] - wall.vertices[0]));
+  wall.triangles = {0, 1, 2};
+  std::vector<PolygonMesh> corner{floor, wall};
+  EXPECT_EQ(repair_t_junctions(corner, kTolerance).vertices_inserted, 0u);
+}
+
+TEST(TJunctions, DegenerateInputsAreLeftAlone) {
+  std::vector<PolygonMesh> none;
+  EXPECT_EQ(repair_t_junctions(none, kTolerance).vertices_inserted, 0u);
+  std::vector<PolygonMesh> empty(3);  // meshes without triangles
+  EXPECT_EQ(repair_t_junctions(empty, kTolerance).vertices_inserted, 0u);
+  // Zero-length and collinear (zero-area) triangles beside a real one: nothing inserted, nothing lost.
+  PolygonMesh flat;
+  flat.vertices = {{0, 0, 0}, {0, 0, 0}, {1, 1, 0}, {2, 2, 0}};
+  flat.triangles = {0, 1, 2, 0, 2, 3};
+  PolygonMesh real;
+  real.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}};
+  real.triangles = {0, 1, 2};
+  std::vector<PolygonMesh> meshes{flat, real};
+  const TJunctionStats s = repair_t_junctions(meshes, kTolerance);
+  for (const auto& m : meshes)
+    for (const Vec3& v : m.vertices) EXPECT_TRUE(std::isfinite(v.x + v.y + v.z));
+  // The diagonal (0,0)-(2,2) of `real` holds flat's (1,1): a real T-junction, inserted once, and the
+  // triangle stays counter-clockwise with the same area.
+  EXPECT_EQ(s.vertices_inserted, 1u);
+  EXPECT_NEAR(area(meshes[1]), 2.0, 1e-12);
+  EXPECT_TRUE(all_counter_clockwise(meshes[1]));
+  // Several meshes offering the same point: one copy.
+  PolygonMesh target;
+  target.vertices = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}};
+  target.triangles = {0, 1, 2};
+  PolygonMesh left, right;
+  left.vertices = {{2, 2, 0}, {1, 3, 0}, {0, 3, 0}};
+  left.triangles = {0, 1, 2};
+  right.vertices = {{2, 2, 0}, {2, 3, 0}, {1, 3, 0}};
+  right.triangles = {0, 1, 2};
+  std::vector<PolygonMesh> three{target, left, right};
+  repair_t_junctions(three, kTolerance);
+  EXPECT_EQ(three[0].vertices.size(), 4u);
+  EXPECT_EQ(three[0].triangles.size(), 6u);
+}
+
+// The real house: its floors meet along slanted basement-wall tops. After the pipeline's dicing and repair,
+// no coplanar seam keeps a T-junction, and the rest of each polygon is untouched.
+TEST(TJunctions, HouseFloorsHaveNoOpenSeams) {
+  model::Model m = read_dxf(std::string(WALK_SHARED_DATA) + "/eplus-house-doors/house.dxf");
+  cut_openings(m);
+  std::vector<PolygonMesh> meshes;
+  std::vector<double> areas;
+  for (const auto& p : m.polygons) {
+    meshes.push_back(mesh_polygon(p, 0.4));
+    areas.push_back(area(meshes.back()));
+  }
+  const std::size_t open_before = open_t_junctions(meshes);
+  EXPECT_GT(open_before, 0u) << "the house has slanted seams between diced floors";
+  const TJunctionStats s = repair_t_junctions(meshes, kTolerance);
+  EXPECT_GT(s.vertices_inserted, 0u);
+  EXPECT_EQ(open_t_junctions(meshes), 0u);
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    // Inserted points lie up to the tolerance off an edge: the area moves by at most that along the outline.
+    EXPECT_NEAR(area(meshes[i]), areas[i], kTolerance * outline_length(meshes[i])) << "polygon " << i;
+    EXPECT_TRUE(all_counter_clockwise(meshes[i])) << "polygon " << i;
+  }
+}
+
+}  // namespace
+}  // namespace walk::compiler
