@@ -53,24 +53,17 @@ VerifyReport judge(const VisibilityJudge& judge, const std::vector<CellViews>& v
 int verify(const VerifyArgs& args) {
   const auto b = model::Bundle::open(args.bundle);
   const VisibilityJudge j(b->vertices(), b->indices(), b->polygons(), args.options);
-  // Portals are derived data: recomputed from the stored cells and polygons.
-  Partition part;
-  part.planes = axial_planes(j.polygons());
-  model::Bounds bounds;
-  for (const auto& c : b->cells()) {
-    Box box{{c.bounds_min[0], c.bounds_min[1], c.bounds_min[2]},
-            {c.bounds_max[0], c.bounds_max[1], c.bounds_max[2]}};
-    bounds.add(box.min);
-    bounds.add(box.max);
-    part.cells.push_back(box);
-  }
-  part.bounds = {bounds.min, bounds.max};
-  part.cell_polygons.resize(part.cells.size());
-  const PortalGraph graph = find_portals(part, j.polygons(), args.options.cull_back_faces);
+  const BundleCells cells = bundle_cells(j.polygons(), b->cells(), args.options.cull_back_faces);
+  const Partition& part = cells.partition;
+  const PortalGraph& graph = cells.graph;
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<CellViews> views;
-  for (std::uint32_t c = 0; c < part.cells.size(); ++c) views.push_back(j.views(part.cells[c], c));
+  std::size_t portal_eyes = 0;
+  for (std::uint32_t c = 0; c < part.cells.size(); ++c) {
+    views.push_back(j.views(part.cells[c], c, portal_viewpoints(graph, part.cells[c], c)));
+    portal_eyes += views.back().portal_viewpoints;
+  }
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   if (!args.sweep.empty()) {
@@ -143,9 +136,10 @@ int verify(const VerifyArgs& args) {
     }
   std::printf("bundle %s: %zu polygons, %zu cells, %zu portals, %zu leaks\n", args.bundle.c_str(), r.polygons,
               r.cells, r.portals, graph.leaks.size());
-  std::printf("viewpoints per cell %d at %dx%d x6, dense %d^3 at %dx%d x6 (%.1f s)\n",
-              args.options.viewpoints, args.options.resolution, args.options.resolution, args.options.dense,
-              args.options.dense_resolution, args.options.dense_resolution, render_s);
+  std::printf(
+      "viewpoints per cell %d at %dx%d x6, dense %d^3 and %zu beside portals in all at %dx%d x6 (%.1f s)\n",
+      args.options.viewpoints, args.options.resolution, args.options.resolution, args.options.dense,
+      portal_eyes, args.options.dense_resolution, args.options.dense_resolution, render_s);
   std::printf("missed pixels %llu of %llu\n", static_cast<unsigned long long>(r.missed),
               static_cast<unsigned long long>(r.pixels));
   std::printf("PVS / exact %.3f (worst cell %.3f)\n", r.ratio, r.ratio_worst);
@@ -184,6 +178,9 @@ void add_verify_command(CLI::App& app, int& exit_code) {
   cmd->add_flag(
       "--anywhere{false}", args->options.free_space_only,
       "Viewpoints anywhere in a cell, also inside solids and outside the model (default: open space)");
+  cmd->add_flag("--no-portal-views{false}", args->options.portal_views,
+                "No viewpoints beside the portals (default: each portal's centre and corners, 1 mm inside "
+                "each cell it joins, at the dense resolution)");
   cmd->callback([args, &exit_code] { exit_code = verify(*args); });
 }
 

@@ -81,7 +81,57 @@ void VisibilityJudge::cube(const model::Vec3& eye, int res, CellViews* keep, std
   (void)n;
 }
 
-CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index) const {
+std::vector<model::Vec3> portal_viewpoints(const PortalGraph& graph, const Box& cell,
+                                           std::uint32_t cell_index) {
+  std::vector<model::Vec3> eyes;
+  if (cell_index >= graph.cell_portals.size()) return eyes;
+  for (const auto id : graph.cell_portals[cell_index]) {
+    const Portal& portal = graph.portals[id];
+    if (portal.hull.empty()) continue;
+    model::Vec3 centre{0.0};
+    for (const auto& v : portal.hull) centre += v;
+    centre /= double(portal.hull.size());
+    std::vector<model::Vec3> points{centre};
+    const std::size_t corners = std::min<std::size_t>(kPortalCorners, portal.hull.size());
+    for (std::size_t k = 0; k < corners; ++k) {
+      const model::Vec3& v = portal.hull[k * portal.hull.size() / corners];
+      points.push_back(v + (centre - v) * 0.1);
+    }
+    // Into the cell, off the face the portal lies on, and within the inset box like every other viewpoint.
+    const double into = portal.back == cell_index ? -kInset : kInset;
+    for (auto p : points) {
+      p[portal.axis] = portal.coord + into;
+      for (int a = 0; a < 3; ++a) {
+        const double margin = std::min(kInset, 0.25 * (cell.max[a] - cell.min[a]));
+        p[a] = std::clamp(p[a], cell.min[a] + margin, cell.max[a] - margin);
+      }
+      eyes.push_back(p);
+    }
+  }
+  return eyes;
+}
+
+BundleCells bundle_cells(const std::vector<VisPolygon>& polygons, std::span<const model::CellRecord> cells,
+                         bool cull_back_faces) {
+  BundleCells out;
+  Partition& part = out.partition;
+  part.planes = axial_planes(polygons);
+  model::Bounds bounds;
+  for (const auto& c : cells) {
+    Box box{{c.bounds_min[0], c.bounds_min[1], c.bounds_min[2]},
+            {c.bounds_max[0], c.bounds_max[1], c.bounds_max[2]}};
+    bounds.add(box.min);
+    bounds.add(box.max);
+    part.cells.push_back(box);
+  }
+  part.bounds = {bounds.min, bounds.max};
+  part.cell_polygons.resize(part.cells.size());
+  out.graph = find_portals(part, polygons, cull_back_faces);
+  return out;
+}
+
+CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index,
+                                 std::span<const model::Vec3> portal_eyes) const {
   CellViews v;
   std::vector<char> seen(glass_.size(), 0);
   std::mt19937_64 rng(options_.seed * 0x9E3779B97F4A7C15ull + cell_index);
@@ -105,6 +155,12 @@ CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index) cons
       for (int k = 0; k < d; ++k) {
         const model::Vec3 eye = inset_point(cell, {(i + 0.5) / d, (j + 0.5) / d, (k + 0.5) / d});
         if (v.no_free_space || usable(eye)) cube(eye, options_.dense_resolution, nullptr, seen);
+      }
+  if (options_.portal_views)
+    for (const auto& eye : portal_eyes)
+      if (v.no_free_space || usable(eye)) {
+        cube(eye, options_.dense_resolution, &v, seen);
+        ++v.portal_viewpoints;
       }
   for (std::uint32_t p = 0; p < seen.size(); ++p)
     if (seen[p]) v.exact.push_back(p);

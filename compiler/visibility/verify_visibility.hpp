@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/partition/portals.hpp"
 #include "compiler/raycast/ray_caster.hpp"
 #include "compiler/visibility/vis_geometry.hpp"
 
@@ -27,6 +28,9 @@ struct VerifyOptions {
   // Judge the images the renderer draws: with back faces culled (its default), a polygon met from behind is
   // not drawn and what lies behind it shows.
   bool cull_back_faces = true;
+  // Viewpoints beside each portal too (see portal_viewpoints), at dense_resolution, counted for missed
+  // pixels and the exact set alike.
+  bool portal_views = true;
 };
 
 // What the sight lines from a cell's viewpoints met: per pixel the ids along it (glass, then the stop).
@@ -35,13 +39,33 @@ struct CellViews {
   std::vector<std::uint32_t> ids;
   std::vector<std::uint32_t> offsets{0};  // pixel p's ids: ids[offsets[p] .. offsets[p+1])
   std::vector<std::uint32_t> exact;       // union over the dense viewpoints and these, sorted
+  std::size_t portal_viewpoints = 0;      // of those kept, how many stood beside a portal
 };
+
+// Viewpoints beside the portals of `cell`: each portal's centre and up to kPortalCorners of its hull's
+// corners pulled a tenth of the way to the centre, kept 1 mm inside the cell. A cell's widest views are from
+// its portals, at the faces of its box, where the dense grid never stands: without them the exact set misses
+// what a walker sees stepping up to a door, and the missed-pixel count never tests the PVS there.
+inline constexpr int kPortalCorners = 4;
+
+// A bundle's cells and their portals, recomputed from the stored cell boxes and polygons: portals are derived
+// data, not stored. The partition's per-cell polygon lists are left empty.
+struct BundleCells {
+  Partition partition;
+  PortalGraph graph;
+};
+[[nodiscard]] BundleCells bundle_cells(const std::vector<VisPolygon>& polygons,
+                                       std::span<const model::CellRecord> cells, bool cull_back_faces);
+[[nodiscard]] std::vector<model::Vec3> portal_viewpoints(const PortalGraph& graph, const Box& cell,
+                                                         std::uint32_t cell_index);
 
 class VisibilityJudge {
  public:
   VisibilityJudge(std::span<const model::VertexRecord> vertices, std::span<const std::uint32_t> indices,
                   std::span<const model::PolygonRecord> polygons, const VerifyOptions& options);
-  [[nodiscard]] CellViews views(const Box& cell, std::uint32_t cell_index) const;
+  // `portal_eyes` (from portal_viewpoints) are looked from too, when options.portal_views is on.
+  [[nodiscard]] CellViews views(const Box& cell, std::uint32_t cell_index,
+                                std::span<const model::Vec3> portal_eyes = {}) const;
   // Whether `p` lies in open space: of 14 sight lines (axes and cube diagonals), more meet the front of a
   // polygon than its back. Inside a solid, in a thick wall or outside a closed model, the first polygons
   // met are seen from behind. Glass and sight lines that leave the model count for neither.

@@ -37,7 +37,8 @@ Judged judge(const MiniBuilding& m, PvsMethod method, bool cull_back_faces = fal
   j.vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, test_config(method, cull_back_faces));
   const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(cull_back_faces));
   for (std::uint32_t c = 0; c < j.vis.partition.cells.size(); ++c) {
-    const CellViews v = judge.views(j.vis.partition.cells[c], c);
+    const CellViews v =
+        judge.views(j.vis.partition.cells[c], c, portal_viewpoints(j.vis.graph, j.vis.partition.cells[c], c));
     j.missed += judge.missed(v, j.vis.pvs[c]);
     j.exact.push_back(v.exact);
   }
