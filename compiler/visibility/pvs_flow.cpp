@@ -11,46 +11,75 @@ namespace {
 struct Directed {
   const Winding* winding;
   Plane plane;  // normal pointing into `to`
+  std::uint32_t from;
   std::uint32_t to;
-  // Cells a flow through this portal could reach (a flood from `to` that never re-enters the cell it
-  // leaves), one bit each: when all of them are done, nothing new lies beyond and the flow skips it.
-  std::vector<std::uint64_t> beyond;
+  // Cells a sight line through this portal might reach, one bit each (Quake vis's "mightsee"): a flood from
+  // `to` through the portals that lie partly in front of this one and have this one partly behind them,
+  // never re-entering `from`. A sight line through this portal and then others meets only such portals, so
+  // a flow may go on through it only while some cell both it and every portal before it might reach is
+  // not done yet.
+  std::vector<std::uint64_t> might;
 };
 
-class Flow {
- public:
-  Flow(const Partition& part, const PortalGraph& g, const std::vector<VisPolygon>& polys,
-       std::uint64_t budget)
-      : part_(part), polys_(polys), budget_(budget), out_(part.cells.size()) {
+using Bits = std::vector<std::uint64_t>;
+
+bool bit(const Bits& bits, std::uint32_t i) {
+  return bits[i / 64] >> (i % 64) & 1;
+}
+void set_bit(Bits& bits, std::uint32_t i) {
+  bits[i / 64] |= std::uint64_t(1) << (i % 64);
+}
+
+// Some point of `w` on the front side of `p`, counting points within kPlaneEpsilon as in front.
+bool partly_in_front(const Winding& w, const Plane& p) {
+  return std::any_of(w.begin(), w.end(),
+                     [&](const model::Vec3& v) { return p.distance(v) >= -kPlaneEpsilon; });
+}
+
+// The directed portals of every cell and their might-see sets, built once and shared by every cell's flow.
+struct FlowGraph {
+  std::vector<std::vector<Directed>> out;  // per cell: portals sight lines may leave it through
+  std::vector<std::vector<std::uint32_t>> cells_of_polygon;
+
+  FlowGraph(const Partition& part, const PortalGraph& g, std::size_t polygons) : out(part.cells.size()) {
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
       for (const auto id : g.cell_portals[c]) {
         const Portal& p = g.portals[id];
         if (!p.open_from(c)) continue;  // one-way, the other way
-        out_[c].push_back({&p.hull,
-                           axial_plane(p.axis, p.coord, p.back == c ? 1.0 : -1.0),
-                           p.back == c ? p.front : p.back,
-                           {}});
+        out[c].push_back({&p.hull,
+                          axial_plane(p.axis, p.coord, p.back == c ? 1.0 : -1.0),
+                          c,
+                          p.back == c ? p.front : p.back,
+                          {}});
       }
     const std::size_t words = (part.cells.size() + 63) / 64;
-    for (std::uint32_t c = 0; c < part.cells.size(); ++c)
-      for (auto& d : out_[c]) {
-        d.beyond.assign(words, 0);
+    for (auto& cell_out : out)
+      for (auto& d : cell_out) {
+        d.might.assign(words, 0);
         std::vector<std::uint32_t> stack{d.to};
-        set_bit(d.beyond, d.to);
+        set_bit(d.might, d.to);
         while (!stack.empty()) {
           const auto x = stack.back();
           stack.pop_back();
-          for (const auto& e : out_[x])
-            if (e.to != c && !bit(d.beyond, e.to)) {
-              set_bit(d.beyond, e.to);
+          for (const auto& e : out[x])
+            if (e.to != d.from && !bit(d.might, e.to) && partly_in_front(*e.winding, d.plane) &&
+                partly_in_front(*d.winding, e.plane.flipped())) {
+              set_bit(d.might, e.to);
               stack.push_back(e.to);
             }
         }
       }
-    cells_of_polygon_.resize(polys.size());
+    cells_of_polygon.resize(polygons);
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
-      for (const auto p : part.cell_polygons[c]) cells_of_polygon_[p].push_back(c);
+      for (const auto p : part.cell_polygons[c]) cells_of_polygon[p].push_back(c);
   }
+};
+
+class Flow {
+ public:
+  Flow(const Partition& part, const FlowGraph& graph, const std::vector<VisPolygon>& polys,
+       std::uint64_t budget)
+      : part_(part), graph_(graph), polys_(polys), budget_(budget) {}
 
   void run(std::uint32_t cell, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& visible,
            std::uint64_t& steps, bool& fell_back) {
@@ -64,14 +93,14 @@ class Flow {
     steps_ = 0;
     mark_all(cell);
     on_stack_[cell] = 1;
-    for (const auto& d : out_[cell]) {
-      if (all_done(d.beyond)) continue;
+    for (const auto& d : graph_.out[cell]) {
+      if (all_done(d.might)) continue;
       source_plane_ = d.plane;
-      recurse(d.to, *d.winding, nullptr, nullptr);
+      recurse(d.to, *d.winding, nullptr, nullptr, d.might);
       if (steps_ > budget_) break;
     }
     fell_back = steps_ > budget_;
-    if (fell_back) flood(cell);
+    if (fell_back) might_see_all(cell);
     steps += steps_;
     for (std::uint32_t c = 0; c < seen_cell_.size(); ++c)
       if (seen_cell_[c]) cells.push_back(c);
@@ -80,12 +109,6 @@ class Flow {
   }
 
  private:
-  static bool bit(const std::vector<std::uint64_t>& bits, std::uint32_t i) {
-    return bits[i / 64] >> (i % 64) & 1;
-  }
-  static void set_bit(std::vector<std::uint64_t>& bits, std::uint32_t i) {
-    bits[i / 64] |= std::uint64_t(1) << (i % 64);
-  }
   bool all_done(const std::vector<std::uint64_t>& cells) const {
     for (std::size_t w = 0; w < cells.size(); ++w)
       if (cells[w] & ~done_[w]) return false;
@@ -100,7 +123,7 @@ class Flow {
   void see_polygon(std::uint32_t p) {
     if (seen_poly_[p]) return;
     seen_poly_[p] = 1;
-    for (const auto c : cells_of_polygon_[p])
+    for (const auto c : graph_.cells_of_polygon[p])
       if (--unseen_in_cell_[c] == 0 && seen_cell_[c]) set_bit(done_, c);
   }
   void mark_all(std::uint32_t c) {
@@ -108,20 +131,13 @@ class Flow {
     for (const auto p : part_.cell_polygons[c]) see_polygon(p);
   }
 
-  void flood(std::uint32_t start) {
-    std::vector<std::uint32_t> stack{start};
-    std::vector<char> done(part_.cells.size(), 0);
-    done[start] = 1;
-    while (!stack.empty()) {
-      const auto c = stack.back();
-      stack.pop_back();
-      mark_all(c);
-      for (const auto& d : out_[c])
-        if (!done[d.to]) {
-          done[d.to] = 1;
-          stack.push_back(d.to);
-        }
-    }
+  // Past the budget: every cell that a sight line through one of the cell's portals might reach, whole.
+  // Conservative (each might-see set holds every cell such a sight line can reach), and tighter than a
+  // flood through every portal.
+  void might_see_all(std::uint32_t cell) {
+    for (const auto& d : graph_.out[cell])
+      for (std::uint32_t c = 0; c < part_.cells.size(); ++c)
+        if (bit(d.might, c)) mark_all(c);
   }
 
   static bool survives(Winding w, const std::vector<Plane>& planes) {
@@ -140,7 +156,9 @@ class Flow {
 
   // Entering `cell`, seen from `source` (part of the first portal) through `pass` (the last portal passed,
   // clipped), or directly through the first portal when pass is null.
-  void recurse(std::uint32_t cell, const Winding& source, const Winding* pass, const Plane* pass_plane) {
+  // `might`: the cells every portal passed so far might see.
+  void recurse(std::uint32_t cell, const Winding& source, const Winding* pass, const Plane* pass_plane,
+               const Bits& might) {
     if (++steps_ > budget_) return;
     std::vector<Plane> seps;
     if (!pass) {
@@ -156,8 +174,11 @@ class Flow {
         if (!seen_poly_[p] && survives(polys_[p].hull, test)) see_polygon(p);
     }
     on_stack_[cell] = 1;
-    for (const auto& d : out_[cell]) {
-      if (on_stack_[d.to] || all_done(d.beyond)) continue;
+    Bits next_might(might.size());
+    for (const auto& d : graph_.out[cell]) {
+      if (on_stack_[d.to]) continue;
+      for (std::size_t w = 0; w < might.size(); ++w) next_might[w] = might[w] & d.might[w];
+      if (all_done(next_might)) continue;
       // The source must lie behind the next portal to see through it.
       const Winding next_source = clip_front(source, d.plane.flipped());
       if (next_source.empty()) continue;
@@ -167,18 +188,17 @@ class Flow {
         target = clip_front(target, s);
       }
       if (target.empty()) continue;
-      recurse(d.to, next_source, &target, &d.plane);
+      recurse(d.to, next_source, &target, &d.plane, next_might);
       if (steps_ > budget_) break;
     }
     on_stack_[cell] = 0;
   }
 
   const Partition& part_;
+  const FlowGraph& graph_;
   const std::vector<VisPolygon>& polys_;
   std::uint64_t budget_;
-  std::vector<std::vector<Directed>> out_;
   std::vector<char> seen_cell_, seen_poly_, on_stack_;
-  std::vector<std::vector<std::uint32_t>> cells_of_polygon_;
   std::vector<std::uint32_t> unseen_in_cell_;
   std::vector<std::uint64_t> done_;
   Plane source_plane_;
@@ -195,8 +215,9 @@ FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
   r.polygons.resize(n);
   std::vector<std::uint64_t> steps(n, 0);
   std::vector<char> fell(n, 0);
+  const FlowGraph flow_graph(partition, graph, polygons.size());
   parallel_for(n, threads, [&](std::size_t c) {
-    Flow flow(partition, graph, polygons, budget);
+    Flow flow(partition, flow_graph, polygons, budget);
     bool fb = false;
     flow.run(static_cast<std::uint32_t>(c), r.cells[c], r.polygons[c], steps[c], fb);
     fell[c] = fb;

@@ -14,7 +14,7 @@ struct FlowPvs {
   std::vector<std::vector<std::uint32_t>> cells;     // per cell: cells reached (sorted, itself included)
   std::vector<std::vector<std::uint32_t>> polygons;  // per cell: polygons passing the plane test (sorted)
   std::uint64_t steps = 0;                           // recursion steps in all
-  std::uint32_t fallbacks = 0;                       // cells whose flow ran past the budget (flooded instead)
+  std::uint32_t fallbacks = 0;  // cells whose flow ran past the budget (all they might see)
 };
 
 [[nodiscard]] FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,

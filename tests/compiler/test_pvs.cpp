@@ -120,6 +120,33 @@ TEST(Pvs, SeparatingPlanesCullWhatNoDoorSequenceShows) {
   EXPECT_LE(cons_total, cells_total);
 }
 
+// A flow that runs past its step budget takes every cell its portals might see, whole: still conservative
+// (nothing seen is missed, the full flow's PVS is inside it), and a sealed room stays sealed.
+TEST(Pvs, FlowPastItsBudgetTakesWhatItsPortalsMightSee) {
+  for (const bool sealed : {false, true}) {
+    std::vector<std::uint32_t> far;
+    MiniBuilding m = row_of_rooms({!sealed, true, true}, &far);
+    m.room({13.0, 1.0, 0.0}, {13.5, 1.5, 0.5});  // a box in the last room
+    VisibilityConfig config = test_config(PvsMethod::Conservative);
+    const VisibilityResult full = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+    config.flow_budget = 1;
+    const VisibilityResult cut = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+    ASSERT_EQ(cut.partition.cells.size(), 4u);
+    EXPECT_EQ(full.flow_fallbacks, 0u);
+    EXPECT_EQ(cut.flow_fallbacks, sealed ? 3u : 4u);  // a sealed room has no portal to take a step through
+    const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(false));
+    std::uint64_t missed = 0;
+    for (std::uint32_t c = 0; c < 4; ++c) {
+      const Box& box = cut.partition.cells[c];
+      missed += judge.missed(judge.views(box, c, portal_viewpoints(cut.graph, box, c)), cut.pvs[c]);
+      for (const auto p : full.pvs[c]) EXPECT_TRUE(has(cut.pvs[c], p)) << "cell " << c << " polygon " << p;
+    }
+    EXPECT_EQ(missed, 0u);
+    const std::uint32_t first = locate(cut.partition.nodes, {1, 1, 1});
+    EXPECT_EQ(has(cut.pvs[first], far[0]), !sealed) << "the far end wall from the first room";
+  }
+}
+
 TEST(Pvs, PortalsMeetingAtACellCorner) {
   // Four rooms around (4,4): each dividing wall has its opening against the middle, so the four
   // openings meet along the vertical line x = y = 4 and the diagonal rooms see each other across it.
