@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "compiler/partition/portals.hpp"
@@ -32,22 +33,39 @@ std::vector<std::vector<std::uint32_t>> bundle_pvs(const model::Bundle& b) {
   return out;
 }
 
+VerifyRow judge_cell(const VisibilityJudge& judge, const CellViews& views,
+                     const std::vector<std::uint32_t>& pvs, std::uint32_t cell) {
+  VerifyRow row;
+  row.cell = cell;
+  row.pvs = pvs.size();
+  row.exact = views.exact.size();
+  row.missed = judge.missed(views, pvs);
+  row.pixels = views.offsets.size() - 1;
+  return row;
+}
+
 VerifyReport judge(const VisibilityJudge& judge, const std::vector<CellViews>& views,
                    const std::vector<std::vector<std::uint32_t>>& pvs) {
   VerifyReport r;
-  for (std::uint32_t c = 0; c < views.size(); ++c) {
-    VerifyRow row;
-    row.cell = c;
-    row.pvs = pvs[c].size();
-    row.exact = views[c].exact.size();
-    row.missed = judge.missed(views[c], pvs[c]);
-    row.pixels = views[c].offsets.size() - 1;
-    r.rows.push_back(row);
-  }
+  for (std::uint32_t c = 0; c < views.size(); ++c) r.rows.push_back(judge_cell(judge, views[c], pvs[c], c));
   r.polygons = judge.polygon_count();
   r.cells = views.size();
   summarise(r);
   return r;
+}
+
+// The first polygon behind a missed pixel of the cell, with where it is, to find the cause; empty if none.
+std::string first_missed(const VisibilityJudge& judge, const CellViews& views,
+                         const std::vector<std::uint32_t>& pvs) {
+  for (const auto id : views.ids)
+    if (!std::binary_search(pvs.begin(), pvs.end(), id)) {
+      const auto& p = judge.polygons()[id];
+      char text[160];
+      std::snprintf(text, sizeof text, " [polygon %u at (%.2f %.2f %.2f)..(%.2f %.2f %.2f)]", id, p.box.min.x,
+                    p.box.min.y, p.box.min.z, p.box.max.x, p.box.max.y, p.box.max.z);
+      return text;
+    }
+  return {};
 }
 
 int verify(const VerifyArgs& args) {
@@ -57,12 +75,26 @@ int verify(const VerifyArgs& args) {
   const Partition& part = cells.partition;
   const PortalGraph& graph = cells.graph;
 
+  // A sweep judges every setting against the same images, so it keeps them all; checking the bundle's own
+  // PVS judges each cell as soon as it is looked at and keeps only the verdict (the full-size images of a
+  // 21-cell house are over a gigabyte of ids).
+  const bool keep_images = !args.sweep.empty();
+  const auto pvs = bundle_pvs(*b);
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<CellViews> views;
+  VerifyReport r;
+  std::vector<std::string> missed_at;
   std::size_t portal_eyes = 0;
   for (std::uint32_t c = 0; c < part.cells.size(); ++c) {
-    views.push_back(j.views(part.cells[c], c, portal_viewpoints(graph, part.cells[c], c)));
-    portal_eyes += views.back().portal_viewpoints;
+    CellViews v = j.views(part.cells[c], c, portal_viewpoints(graph, part.cells[c], c));
+    portal_eyes += v.portal_viewpoints;
+    if (!keep_images) {
+      r.rows.push_back(judge_cell(j, v, pvs[c], c));
+      missed_at.push_back(r.rows.back().missed ? first_missed(j, v, pvs[c]) : std::string());
+      v.ids = std::vector<std::uint32_t>();  // not `= {}`: that clears but keeps the capacity
+      v.offsets = std::vector<std::uint32_t>();
+    }
+    views.push_back(std::move(v));
   }
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -115,24 +147,17 @@ int verify(const VerifyArgs& args) {
     return 0;
   }
 
-  VerifyReport r = judge(j, views, bundle_pvs(*b));
+  r.polygons = j.polygon_count();
+  r.cells = views.size();
+  summarise(r);
   r.portals = graph.portals.size();
-  const auto pvs = bundle_pvs(*b);
   if (!args.quiet)
     for (const auto& row : r.rows) {
       std::printf("cell %4u: PVS %6llu exact %6llu missed %llu", row.cell,
                   static_cast<unsigned long long>(row.pvs), static_cast<unsigned long long>(row.exact),
                   static_cast<unsigned long long>(row.missed));
       if (views[row.cell].no_free_space) std::printf(" (no open space found: viewpoints anywhere)");
-      // Name the polygons behind missed pixels, with where they are, to find the cause.
-      for (const auto id : views[row.cell].ids)
-        if (row.missed && !std::binary_search(pvs[row.cell].begin(), pvs[row.cell].end(), id)) {
-          const auto& p = j.polygons()[id];
-          std::printf(" [polygon %u at (%.2f %.2f %.2f)..(%.2f %.2f %.2f)]", id, p.box.min.x, p.box.min.y,
-                      p.box.min.z, p.box.max.x, p.box.max.y, p.box.max.z);
-          break;
-        }
-      std::printf("\n");
+      std::printf("%s\n", missed_at[row.cell].c_str());
     }
   std::printf("bundle %s: %zu polygons, %zu cells, %zu portals, %zu leaks\n", args.bundle.c_str(), r.polygons,
               r.cells, r.portals, graph.leaks.size());
