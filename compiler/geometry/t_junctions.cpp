@@ -152,10 +152,10 @@ std::vector<std::optional<Edge>> quad_partner_edges(const PolygonMesh& mesh) {
 // The repair among the meshes of one plane (`group`: their indices).
 void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_t> group, double tolerance,
                   TJunctionStats& stats) {
-  // Every mesh's boundary, and its boundary vertices numbered globally with their mesh.
+  // Every mesh's boundary, and its boundary vertices numbered across the group with their mesh.
   std::vector<std::vector<BoundaryEdge>> edges(group.size());  // by place in the group
   std::vector<Vec3> points;
-  std::vector<std::uint32_t> point_mesh, point_vertex;
+  std::vector<std::uint32_t> point_mesh;  // place in the group
   double edge_length_sum = 0.0;
   std::size_t edge_count = 0;
   for (std::uint32_t g = 0; g < group.size(); ++g) {
@@ -172,7 +172,6 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
     for (std::uint32_t v : on_boundary) {
       points.push_back(meshes[m].vertices[v]);
       point_mesh.push_back(g);
-      point_vertex.push_back(v);
     }
   }
   if (edge_count == 0) return;
@@ -288,11 +287,12 @@ TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double toler
   for (std::uint32_t m = 0; m < meshes.size(); ++m) {
     const PolygonMesh& mesh = meshes[m];
     if (mesh.triangles.empty()) continue;
+    // Up to sign: the first component clearly away from zero (a unit vector has one of at least 0.577) is
+    // made positive. Not the largest one: at 45 degrees two are equal, and noise would pick either.
     Vec3 n = mesh.normal;
-    int big = 0;
-    for (int a = 1; a < 3; ++a)
-      if (std::abs(n[a]) > std::abs(n[big])) big = a;
-    if (n[big] < 0.0) n = -n;
+    int lead = 0;
+    while (lead < 2 && std::abs(n[lead]) <= 0.25) ++lead;
+    if (n[lead] < 0.0) n = -n;
     keys.push_back({{std::llround(n.x * 1e6), std::llround(n.y * 1e6), std::llround(n.z * 1e6)},
                     glm::dot(n, mesh.vertices[mesh.triangles[0]]),
                     m});

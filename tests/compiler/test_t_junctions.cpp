@@ -227,6 +227,24 @@ TEST(TJunctions, WhatIsNotOnTheEdgeStaysOut) {
   EXPECT_EQ(repair_t_junctions(corner, kTolerance).vertices_inserted, 0u);
 }
 
+// Coplanar meshes are grouped by normal up to sign: on a wall at 45 degrees two components are equal, and
+// normals a rounding apart must still land in one group (choosing the sign by the largest component split
+// them).
+TEST(TJunctions, DiagonalWallNormalsARoundingApartStillMeet) {
+  PolygonMesh a;
+  a.vertices = {{0, 0, 0}, {2, 2, 0}, {0, 0, 2}};
+  a.triangles = {0, 1, 2};
+  a.normal = {0.70710678118654757, -0.70710678118654746, 0.0};
+  PolygonMesh b;  // across the slanted edge (2,2,0)-(0,0,2), with a corner at its middle
+  b.vertices = {{2, 2, 0}, {2, 2, 2}, {0, 0, 2}, {1, 1, 1}};
+  b.triangles = {0, 1, 3, 3, 1, 2};
+  b.normal = {0.70710678118654746, -0.70710678118654757, 0.0};
+  std::vector<PolygonMesh> meshes{a, b};
+  EXPECT_EQ(repair_t_junctions(meshes, kTolerance).vertices_inserted, 1u);
+  EXPECT_EQ(meshes[0].triangles.size(), 6u);
+  EXPECT_TRUE(all_counter_clockwise(meshes[0]));
+}
+
 TEST(TJunctions, DegenerateInputsAreLeftAlone) {
   std::vector<PolygonMesh> none;
   EXPECT_EQ(repair_t_junctions(none, kTolerance).vertices_inserted, 0u);
