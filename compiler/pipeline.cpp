@@ -242,7 +242,9 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       panel_luminaire.push_back(i);
     }
     std::size_t coarse_fallbacks = 0;
-    auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh) {
+    std::size_t coarse_unrepaired = 0;  // coarse forms drawn without their seam repair
+    auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh,
+                    const PolygonMesh& coarse) {
       const double cell_size = poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid;
       if (mesh.triangles.empty()) return;
       const auto id = static_cast<std::uint32_t>(out.polygons.size());
@@ -287,9 +289,13 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       // The coarse form drawn while moving: the polygon's fewest triangles over its diced vertices, or the
       // diced triangles themselves where no match is found (never seen on the shared models; counted).
       // A panel is meshed undiced already: its mesh is its coarse form.
-      const PolygonMesh coarse = cell_size > 0.0 ? mesh_polygon(poly, 0.0) : mesh;
-      const auto coarse_local =
-          cell_size > 0.0 ? coarse_triangles(mesh, coarse) : std::optional(mesh.triangles);
+      auto coarse_local = cell_size > 0.0 ? coarse_triangles(mesh, coarse) : std::optional(mesh.triangles);
+      // A seam vertex the coarse repair inserted but the diced one did not (it fell within the weld
+      // distance of a diced vertex): the unrepaired coarse form, as before the repair.
+      if (!coarse_local && cell_size > 0.0) {
+        coarse_local = coarse_triangles(mesh, mesh_polygon(poly, 0.0));
+        ++coarse_unrepaired;
+      }
       if (!coarse_local) ++coarse_fallbacks;
       out.coarse_ranges.push_back({static_cast<std::uint32_t>(out.coarse_indices.size()), 0});
       for (std::uint32_t i : coarse_local ? *coarse_local : mesh.triangles)
@@ -329,13 +335,28 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     // Seams between polygons diced apart: vertices that lie on a neighbour's edge within the weld distance
     // become vertices of that edge too, so float rounding cannot open a crack along a slanted seam.
     const TJunctionStats seams = repair_t_junctions(meshes, weld_tolerance);
-    for (std::size_t i = 0; i < to_emit.size(); ++i) emit(*to_emit[i].first, to_emit[i].second, meshes[i]);
+    // The coarse forms drawn while moving, repaired alike. A neighbour's corner on a seam was inserted into
+    // this polygon's diced mesh above, so the coarse form still finds every vertex among the diced ones.
+    std::vector<PolygonMesh> coarse_meshes;
+    TJunctionStats coarse_seams;
+    if (config.lighting.grid > 0.0) {
+      coarse_meshes.reserve(to_emit.size());
+      for (std::size_t i = 0; i < to_emit.size(); ++i)
+        coarse_meshes.push_back(to_emit[i].first->role == model::Role::Luminaire
+                                    ? meshes[i]
+                                    : mesh_polygon(*to_emit[i].first, 0.0));
+      coarse_seams = repair_t_junctions(coarse_meshes, weld_tolerance);
+    }
+    for (std::size_t i = 0; i < to_emit.size(); ++i)
+      emit(*to_emit[i].first, to_emit[i].second, meshes[i],
+           coarse_meshes.empty() ? meshes[i] : coarse_meshes[i]);
     t.done(model.polygons.size() + panels.size(), out.polygons.size(),
            fmt::format("{} vertices {} triangles grid {} m; coarse {} triangles ({} polygons kept diced); "
-                       "T-junctions {} vertices into {} triangles",
+                       "T-junctions {} vertices into {} triangles (coarse {} into {}, {} left unrepaired)",
                        out.vertices.size(), out.indices.size() / 3, config.lighting.grid,
                        out.coarse_indices.size() / 3, coarse_fallbacks, seams.vertices_inserted,
-                       seams.triangles_split));
+                       seams.triangles_split, coarse_seams.vertices_inserted, coarse_seams.triangles_split,
+                       coarse_unrepaired));
   }
 
   const std::size_t circuits = model.circuits.size();
