@@ -241,11 +241,15 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       panels.push_back(panel_polygon(model.luminaires[i]));
       panel_luminaire.push_back(i);
     }
+    // The dicing cell of a polygon's mesh: luminaire panels undiced, everything else on the lighting grid.
+    auto dice_size = [&](const model::Polygon& poly) {
+      return poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid;
+    };
     std::size_t coarse_fallbacks = 0;
     std::size_t coarse_unrepaired = 0;  // coarse forms drawn without their seam repair
     auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh,
                     const PolygonMesh& coarse) {
-      const double cell_size = poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid;
+      const double cell_size = dice_size(poly);
       if (mesh.triangles.empty()) return;
       const auto id = static_cast<std::uint32_t>(out.polygons.size());
       const auto first_vertex = static_cast<std::uint32_t>(out.vertices.size());
@@ -329,9 +333,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     for (std::uint32_t i = 0; i < panels.size(); ++i) to_emit.emplace_back(&panels[i], panel_luminaire[i]);
     std::vector<PolygonMesh> meshes;
     meshes.reserve(to_emit.size());
-    for (const auto& [poly, luminaire] : to_emit)
-      meshes.push_back(
-          mesh_polygon(*poly, poly->role == model::Role::Luminaire ? 0.0 : config.lighting.grid));
+    for (const auto& [poly, luminaire] : to_emit) meshes.push_back(mesh_polygon(*poly, dice_size(*poly)));
     // Seams between polygons diced apart: vertices that lie on a neighbour's edge within the weld distance
     // become vertices of that edge too, so float rounding cannot open a crack along a slanted seam.
     const TJunctionStats seams = repair_t_junctions(meshes, weld_tolerance);
@@ -342,9 +344,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     if (config.lighting.grid > 0.0) {
       coarse_meshes.reserve(to_emit.size());
       for (std::size_t i = 0; i < to_emit.size(); ++i)
-        coarse_meshes.push_back(to_emit[i].first->role == model::Role::Luminaire
-                                    ? meshes[i]
-                                    : mesh_polygon(*to_emit[i].first, 0.0));
+        coarse_meshes.push_back(dice_size(*to_emit[i].first) > 0.0 ? mesh_polygon(*to_emit[i].first, 0.0)
+                                                                   : meshes[i]);
       coarse_seams = repair_t_junctions(coarse_meshes, weld_tolerance);
     }
     for (std::size_t i = 0; i < to_emit.size(); ++i)

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compiler/partition/portals.hpp"
@@ -44,14 +45,20 @@ VerifyRow judge_cell(const VisibilityJudge& judge, const CellViews& views,
   return row;
 }
 
-VerifyReport judge(const VisibilityJudge& judge, const std::vector<CellViews>& views,
-                   const std::vector<std::vector<std::uint32_t>>& pvs) {
+VerifyReport report_of(std::vector<VerifyRow> rows, std::size_t polygons) {
   VerifyReport r;
-  for (std::uint32_t c = 0; c < views.size(); ++c) r.rows.push_back(judge_cell(judge, views[c], pvs[c], c));
-  r.polygons = judge.polygon_count();
-  r.cells = views.size();
+  r.rows = std::move(rows);
+  r.polygons = polygons;
+  r.cells = r.rows.size();
   summarise(r);
   return r;
+}
+
+VerifyReport judge(const VisibilityJudge& judge, const std::vector<CellViews>& views,
+                   const std::vector<std::vector<std::uint32_t>>& pvs) {
+  std::vector<VerifyRow> rows;
+  for (std::uint32_t c = 0; c < views.size(); ++c) rows.push_back(judge_cell(judge, views[c], pvs[c], c));
+  return report_of(std::move(rows), judge.polygon_count());
 }
 
 // The first polygon behind a missed pixel of the cell, with where it is, to find the cause; empty if none.
@@ -82,15 +89,15 @@ int verify(const VerifyArgs& args) {
   const auto pvs = bundle_pvs(*b);
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<CellViews> views;
-  VerifyReport r;
+  std::vector<VerifyRow> rows;
   std::vector<std::string> missed_at;
   std::size_t portal_eyes = 0;
   for (std::uint32_t c = 0; c < part.cells.size(); ++c) {
     CellViews v = j.views(part.cells[c], c, portal_viewpoints(graph, part.cells[c], c));
     portal_eyes += v.portal_viewpoints;
     if (!keep_images) {
-      r.rows.push_back(judge_cell(j, v, pvs[c], c));
-      missed_at.push_back(r.rows.back().missed ? first_missed(j, v, pvs[c]) : std::string());
+      rows.push_back(judge_cell(j, v, pvs[c], c));
+      missed_at.push_back(rows.back().missed ? first_missed(j, v, pvs[c]) : std::string());
       v.ids = std::vector<std::uint32_t>();  // not `= {}`: that clears but keeps the capacity
       v.offsets = std::vector<std::uint32_t>();
     }
@@ -147,9 +154,7 @@ int verify(const VerifyArgs& args) {
     return 0;
   }
 
-  r.polygons = j.polygon_count();
-  r.cells = views.size();
-  summarise(r);
+  VerifyReport r = report_of(std::move(rows), j.polygon_count());
   r.portals = graph.portals.size();
   if (!args.quiet)
     for (const auto& row : r.rows) {

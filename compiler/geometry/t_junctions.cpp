@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>
+#include <map>
 #include <optional>
 #include <span>
 #include <tuple>
@@ -17,6 +18,7 @@ namespace {
 
 using model::Vec3;
 using Triangle = std::array<std::uint32_t, 3>;
+using Edge = std::pair<std::uint32_t, std::uint32_t>;  // directed: first -> second
 
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return (std::uint64_t(a) << 32) | b;
@@ -131,7 +133,6 @@ Triangle triangle_at(const PolygonMesh& mesh, std::size_t t) {
 // The edge each triangle shares with its quad partner, paired as the renderer's find_quads pairs them:
 // scanning the list, a triangle and the next one are a pair when they share an edge, and the scan goes on
 // after the pair; otherwise it moves on by one. Unpaired triangles get no edge.
-using Edge = std::pair<std::uint32_t, std::uint32_t>;
 std::vector<std::optional<Edge>> quad_partner_edges(const PolygonMesh& mesh) {
   const std::size_t count = mesh.triangles.size() / 3;
   std::vector<std::optional<Edge>> out(count);
@@ -186,11 +187,8 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   std::vector<Insertion> found;
   for (std::uint32_t g = 0; g < group.size(); ++g) {
     PolygonMesh& mesh = meshes[group[g]];
-    // Per triangle: the edges to split and the points on each, as this mesh's (possibly new) vertices.
-    std::unordered_map<
-        std::uint32_t,
-        std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>>>>
-        splits;
+    // Per triangle, in list order: the edges to split and the points on each, as this mesh's vertices.
+    std::map<std::uint32_t, std::vector<std::pair<Edge, std::vector<std::uint32_t>>>> splits;
     std::unordered_map<std::uint32_t, std::uint32_t> copy_of;  // global point -> this mesh's vertex
     for (const auto& e : edges[g]) {
       const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
@@ -209,8 +207,6 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
       found.clear();
       for (std::uint32_t p : near) {
         if (point_mesh[p] == g) continue;
-        if (std::abs(glm::dot(meshes[group[point_mesh[p]]].normal, mesh.normal)) < kSeamParallelCosine)
-          continue;
         const Vec3& x = points[p];
         const double t = glm::dot(x - a, d) / length2;
         if (t * length <= tolerance || (1.0 - t) * length <= tolerance) continue;
@@ -248,13 +244,9 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
     std::vector<Triangle> in_place(count), appended;
     for (std::size_t t = 0; t < count; ++t) in_place[t] = triangle_at(mesh, t);
     const auto partners = quad_partner_edges(mesh);
-    // Split triangles in list order, so the output does not hang on hashing.
-    std::vector<std::uint32_t> order;
-    for (const auto& [t, s] : splits) order.push_back(t);
-    std::sort(order.begin(), order.end());
-    for (std::uint32_t t : order) {
+    for (const auto& [t, edge_points] : splits) {
       std::vector<Triangle> pieces{in_place[t]};
-      for (const auto& [edge, at] : splits[t]) split_edge(pieces, edge.first, edge.second, at);
+      for (const auto& [edge, at] : edge_points) split_edge(pieces, edge.first, edge.second, at);
       const auto& partner = partners[t];
       std::size_t keep = 0;
       if (partner)
@@ -276,8 +268,8 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
 TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double tolerance) {
   TJunctionStats stats;
   // Seams are only repaired between coplanar meshes, so the search runs per plane: meshes grouped by their
-  // normal (up to sign, in bins of 1e-6; two normals a hair apart in neighbouring bins are not joined, which
-  // leaves a seam unrepaired, as before) and then by offset along it, within kSeamNoise of the previous.
+  // normal (up to sign, in bins of kSeamNormalBin) and then by offset along it, within kSeamNoise of the
+  // previous.
   struct Key {
     std::array<long long, 3> normal;
     double offset;
@@ -293,7 +285,8 @@ TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double toler
     int lead = 0;
     while (lead < 2 && std::abs(n[lead]) <= 0.25) ++lead;
     if (n[lead] < 0.0) n = -n;
-    keys.push_back({{std::llround(n.x * 1e6), std::llround(n.y * 1e6), std::llround(n.z * 1e6)},
+    keys.push_back({{std::llround(n.x / kSeamNormalBin), std::llround(n.y / kSeamNormalBin),
+                     std::llround(n.z / kSeamNormalBin)},
                     glm::dot(n, mesh.vertices[mesh.triangles[0]]),
                     m});
   }

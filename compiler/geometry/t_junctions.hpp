@@ -20,11 +20,13 @@ namespace walk::compiler {
 // Points this close to each other on one edge are one point: inserting both would cut a triangle of no area.
 inline constexpr double kSeamNoise = 1e-9;
 
-// Only coplanar neighbours (normals parallel within this cosine, either facing) give vertices. Where a wall
-// stands on a floor's slanted edge, inserting each into the other would cut slivers into the slanted wall
-// whose float-rounded normals tilt by up to a few percent (back-face tests then keep them) and whose extra
-// triangles all go to the ray caster's BSP. A crack in such a corner is left, as before.
-inline constexpr double kSeamParallelCosine = 1.0 - 1e-9;
+// Only coplanar neighbours give vertices: meshes whose unit normals, up to sign, fall in the same bins of
+// this width on each axis (a rounding apart; two normals straddling a bin edge are not joined) and whose
+// planes lie within kSeamNoise of each other. Where a wall stands on a floor's slanted edge, inserting each
+// into the other would cut slivers into the slanted wall whose float-rounded normals tilt by up to a few
+// percent (back-face tests then keep them) and whose extra triangles all go to the ray caster's BSP. A
+// crack in such a corner is left, as before.
+inline constexpr double kSeamNormalBin = 1e-6;
 
 struct TJunctionStats {
   std::size_t vertices_inserted = 0;  // vertex copies added to edges
@@ -32,8 +34,8 @@ struct TJunctionStats {
 };
 
 // Inserts into each mesh's boundary edges (edges without a twin in their own mesh) the boundary vertices of
-// the other meshes that lie within `tolerance` (metres) of the edge, farther than `tolerance` from both of
-// its ends and within kSeamNoise of the mesh's plane. An inserted vertex is an exact copy of the
+// the other coplanar meshes that lie within `tolerance` (metres) of the edge, farther than `tolerance` from
+// both of its ends and within kSeamNoise of the mesh's plane. An inserted vertex is an exact copy of the
 // other mesh's vertex, so both sides round alike. A split triangle keeps its place in the list with the piece
 // that holds the edge it shares with its quad partner (paired as the renderer pairs them to re-split quads),
 // so pairs stay pairs; the other pieces go to the end. Orientation is kept. Meshes with no neighbours within

@@ -8,6 +8,8 @@
 namespace walk::compiler {
 namespace {
 
+using Bits = std::vector<std::uint64_t>;  // one bit per cell
+
 struct Directed {
   const Winding* winding;
   Plane plane;  // normal pointing into `to`
@@ -18,10 +20,8 @@ struct Directed {
   // never re-entering `from`. A sight line through this portal and then others meets only such portals, so
   // a flow may go on through it only while some cell both it and every portal before it might reach is
   // not done yet.
-  std::vector<std::uint64_t> might;
+  Bits might;
 };
-
-using Bits = std::vector<std::uint64_t>;
 
 bool bit(const Bits& bits, std::uint32_t i) {
   return bits[i / 64] >> (i % 64) & 1;
@@ -109,7 +109,7 @@ class Flow {
   }
 
  private:
-  bool all_done(const std::vector<std::uint64_t>& cells) const {
+  bool all_done(const Bits& cells) const {
     for (std::size_t w = 0; w < cells.size(); ++w)
       if (cells[w] & ~done_[w]) return false;
     return true;
@@ -200,7 +200,7 @@ class Flow {
   std::uint64_t budget_;
   std::vector<char> seen_cell_, seen_poly_, on_stack_;
   std::vector<std::uint32_t> unseen_in_cell_;
-  std::vector<std::uint64_t> done_;
+  Bits done_;
   Plane source_plane_;
   std::uint64_t steps_ = 0;
 };

@@ -1,6 +1,7 @@
 #include "compiler/visibility/verify_visibility.hpp"
 
 #include <algorithm>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <random>
 
@@ -26,14 +27,20 @@ void face_frame(int f, model::Vec3& fwd, model::Vec3& right, model::Vec3& up) {
   up = glm::cross(fwd, right);
 }
 
-model::Vec3 inset_point(const Box& b, const model::Vec3& t) {
-  model::Vec3 p;
+// Where viewpoints may stand: the cell kInset inside each face (a quarter of a thinner side).
+Box inset(const Box& b) {
+  Box r = b;
   for (int a = 0; a < 3; ++a) {
-    const double lo = b.min[a] + std::min(kInset, 0.25 * (b.max[a] - b.min[a]));
-    const double hi = b.max[a] - std::min(kInset, 0.25 * (b.max[a] - b.min[a]));
-    p[a] = lo + t[a] * (hi - lo);
+    const double margin = std::min(kInset, 0.25 * (b.max[a] - b.min[a]));
+    r.min[a] += margin;
+    r.max[a] -= margin;
   }
-  return p;
+  return r;
+}
+
+model::Vec3 inset_point(const Box& b, const model::Vec3& t) {
+  const Box in = inset(b);
+  return in.min + t * (in.max - in.min);
 }
 
 }  // namespace
@@ -99,13 +106,10 @@ std::vector<model::Vec3> portal_viewpoints(const PortalGraph& graph, const Box& 
     }
     // Into the cell, off the face the portal lies on, and within the inset box like every other viewpoint.
     const double into = portal.back == cell_index ? -kInset : kInset;
+    const Box in = inset(cell);
     for (auto p : points) {
       p[portal.axis] = portal.coord + into;
-      for (int a = 0; a < 3; ++a) {
-        const double margin = std::min(kInset, 0.25 * (cell.max[a] - cell.min[a]));
-        p[a] = std::clamp(p[a], cell.min[a] + margin, cell.max[a] - margin);
-      }
-      eyes.push_back(p);
+      eyes.push_back(glm::clamp(p, in.min, in.max));
     }
   }
   return eyes;

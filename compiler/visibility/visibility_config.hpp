@@ -28,9 +28,10 @@ struct VisibilityConfig {
   int max_depth = 16;          // tree depth limit
   double min_cell_size = 0.5;  // metres: no cell thinner than this (keeps wall slabs out of the tree)
   PvsMethod method = PvsMethod::Combined;
-  int sample_points = 32;                 // sampled PVS: points per cell (half inside, half on its portals)
-  int rays_per_point = 256;               // sampled PVS: directions per point
-  std::uint64_t flow_budget = 2'000'000;  // portal-flow steps per cell before falling back to a flood
+  int sample_points = 32;    // sampled PVS: points per cell (half inside, half on its portals)
+  int rays_per_point = 256;  // sampled PVS: directions per point
+  // Portal-flow steps per cell before the cell takes, whole, every cell its portals might see.
+  std::uint64_t flow_budget = 2'000'000;
   // Leave out of a cell's PVS every opaque polygon turned away from the whole cell: the renderer culls back
   // faces, so it would never draw them there (EnergyPlus buildings hold every interzone wall twice, back to
   // back, and a room's PVS held both copies of each wall it sees).

@@ -23,6 +23,10 @@ using model::Vec3;
 
 // EnergyPlus scenes weld at 20 um; the repair's tolerance in the pipeline is the weld distance.
 constexpr double kTolerance = 2e-5;
+// The brute-force check's own test for coplanar meshes (with the plane test on each vertex below): normals
+// parallel to a rounding, either facing. The repair groups by kSeamNormalBin instead, a criterion these
+// tests' exactly parallel normals meet either way.
+constexpr double kParallelCosine = 1.0 - 1e-9;
 
 Polygon quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
   Polygon p;
@@ -93,7 +97,7 @@ std::size_t open_t_junctions(const std::vector<PolygonMesh>& meshes) {
       const Vec3 d = b - a;
       const double len = glm::length(d);
       for (std::size_t o = 0; o < meshes.size(); ++o) {
-        if (o == m || std::abs(glm::dot(meshes[o].normal, mesh.normal)) < kSeamParallelCosine) continue;
+        if (o == m || std::abs(glm::dot(meshes[o].normal, mesh.normal)) < kParallelCosine) continue;
         for (const Vec3& x : meshes[o].vertices) {
           const double s = glm::dot(x - a, d) / (len * len);
           if (s * len <= kTolerance || (1 - s) * len <= kTolerance) continue;
