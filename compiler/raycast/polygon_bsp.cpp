@@ -183,68 +183,97 @@ bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmi
                         RayHit* best) const {
   struct Entry {
     std::uint32_t node;
-    double t0, t1;
+    double t0, t1;  // the ray's interval in the node's box, already slab-tested
   };
   Entry stack[2 * kMaxDepth + 8];
   int top = 0;
   double limit = tmax;
   if (!kAny && best->hit()) limit = std::min(limit, best->t + tie);
   const model::Vec3 inv(1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z);
-  {
-    double t0 = tmin, t1 = limit;
-    if (!slab(nodes_[0].lo, nodes_[0].hi, o, inv, t0, t1)) return false;
-    stack[top++] = {0, t0, t1};
-  }
-  const ShearedRay ray(o, dir);
-  if (!ray.valid) return false;
+  double t0 = tmin, t1 = limit;
+  if (!slab(nodes_[0].lo, nodes_[0].hi, o, inv, t0, t1)) return false;
+  // The shear is set up at the first leaf the ray reaches: most rays that meet the tree's bounds (the whole
+  // building's, for walls spread through it) leave by empty space or an axial hit before any leaf.
+  ShearedRay ray;
   const auto& tris = tris_->triangles;
-  while (top > 0) {
-    const Entry e = stack[--top];
-    double t0 = e.t0, t1 = std::min(e.t1, limit);
-    if (t0 > t1) continue;
-    const Node& n = nodes_[e.node];
-    if (!slab(n.lo, n.hi, o, inv, t0, t1)) continue;
-    for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
-      const std::uint32_t i = items_[j];
-      double t = 0.0;
-      if (!intersect_watertight(ray, tris[i].a, tris[i].b, tris[i].c, tmin, limit, t)) continue;
-      if constexpr (kAny) return true;
-      const bool front = tris_->front(i, dir);
-      if (better_hit(t, front, i, *best, tie)) {
-        *best = {t, i, tris[i].polygon, front};
-        limit = std::min(tmax, t + tie);
+  std::uint32_t node = 0;
+  for (;;) {
+    const Node& n = nodes_[node];
+    if (n.count > 0) {
+      if (!ray.valid) {
+        ray = ShearedRay(o, dir);
+        if (!ray.valid) return false;
+      }
+      for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
+        const std::uint32_t i = items_[j];
+        double t = 0.0;
+        if (!intersect_watertight(ray, tris[i].a, tris[i].b, tris[i].c, tmin, limit, t)) continue;
+        if constexpr (kAny) return true;
+        const bool front = tris_->front(i, dir);
+        if (better_hit(t, front, i, *best, tie)) {
+          *best = {t, i, tris[i].polygon, front};
+          limit = std::min(tmax, t + tie);
+        }
       }
     }
-    if (n.front == kNoHit && n.back == kNoHit) continue;
-    // Distance to the split plane and approach speed; an axis plane needs neither dot products nor a
-    // division.
-    double dist, denom, inv_denom;
-    if (n.axis >= 0) {
-      dist = o[n.axis] - n.offset;
-      denom = dir[n.axis];
-      inv_denom = inv[n.axis];
-    } else {
-      dist = glm::dot(n.normal, o) - n.offset;
-      denom = glm::dot(n.normal, dir);
-      inv_denom = 1.0 / denom;
+    // Children whose boxes the ray meets within its interval on their side of the split, near side first.
+    std::uint32_t next[2];
+    double next_t0[2], next_t1[2];
+    int count = 0;
+    if (n.front != kNoHit || n.back != kNoHit) {
+      t1 = std::min(t1, limit);
+      // Distance to the split plane and approach speed; an axis plane needs neither dot products nor a
+      // division.
+      double dist, denom, inv_denom;
+      if (n.axis >= 0) {
+        dist = o[n.axis] - n.offset;
+        denom = dir[n.axis];
+        inv_denom = inv[n.axis];
+      } else {
+        dist = glm::dot(n.normal, o) - n.offset;
+        denom = glm::dot(n.normal, dir);
+        inv_denom = 1.0 / denom;
+      }
+      // Rounding margin in t: the classification tolerance plus the rounding of dist, over the approach
+      // speed.
+      const double margin = (2.0 * kPlaneEps + 1e-15 * std::abs(dist)) * std::abs(inv_denom);
+      const auto add = [&](std::uint32_t child, double a, double b) {
+        if (child == kNoHit || !(a <= b)) return;
+        if (!slab(nodes_[child].lo, nodes_[child].hi, o, inv, a, b)) return;
+        next[count] = child;
+        next_t0[count] = a;
+        next_t1[count] = b;
+        ++count;
+      };
+      if (!(std::abs(denom) > 0.0) || !std::isfinite(margin)) {  // parallel to the plane: stays on its side
+        if (dist >= -kPlaneEps) add(n.front, t0, t1);
+        if (dist <= kPlaneEps) add(n.back, t0, t1);
+      } else {
+        const double ts = -dist * inv_denom;
+        const std::uint32_t first = denom > 0.0 ? n.back : n.front;  // the side the ray is on before ts
+        const std::uint32_t second = denom > 0.0 ? n.front : n.back;
+        add(first, t0, std::min(t1, ts + margin));
+        add(second, std::max(t0, ts - margin), t1);
+      }
     }
-    // Rounding margin in t: the classification tolerance plus the rounding of dist, over the approach speed.
-    const double margin = (2.0 * kPlaneEps + 1e-15 * std::abs(dist)) * std::abs(inv_denom);
-    auto push = [&](std::uint32_t child, double a, double b) {
-      if (child != kNoHit && a <= b && a <= limit) stack[top++] = {child, a, b};
-    };
-    if (!(std::abs(denom) > 0.0) || !std::isfinite(margin)) {  // parallel to the plane: stays on its side
-      if (dist >= -kPlaneEps) push(n.front, t0, t1);
-      if (dist <= kPlaneEps) push(n.back, t0, t1);
+    if (count == 2) stack[top++] = {next[1], next_t0[1], next_t1[1]};
+    if (count > 0) {
+      node = next[0];
+      t0 = next_t0[0];
+      t1 = next_t1[0];
       continue;
     }
-    const double ts = -dist * inv_denom;
-    const std::uint32_t first = denom > 0.0 ? n.back : n.front;  // the side the ray is on before ts
-    const std::uint32_t second = denom > 0.0 ? n.front : n.back;
-    push(second, std::max(t0, ts - margin), t1);  // pushed first: searched after the near side
-    push(first, t0, std::min(t1, ts + margin));
+    for (;;) {  // the nearest pending node still in front of the best hit
+      if (top == 0) return false;
+      const Entry& e = stack[--top];
+      if (e.t0 <= limit) {
+        node = e.node;
+        t0 = e.t0;
+        t1 = e.t1;
+        break;
+      }
+    }
   }
-  return false;
 }
 
 void PolygonBsp::closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
