@@ -69,10 +69,10 @@ std::string structure_detail(const RayCaster& c) {
   char buf[300];
   std::snprintf(
       buf, sizeof buf,
-      "axial %zu tris in %zu+%zu+%zu planes (%zu rects) over %zux%zux%zu blocks (%zu empty) with %zu "
-      "listings; bsp %zu tris %zu nodes (%zu axial splits) depth %d",
+      "axial %zu tris in %zu+%zu+%zu planes (%zu rects) over %zux%zux%zu blocks (%zu empty, %zu holding BSP "
+      "tris) with %zu listings; bsp %zu tris %zu nodes (%zu axial splits) depth %d",
       p.triangles, p.planes[0], p.planes[1], p.planes[2], p.rectangles, k.blocks[0], k.blocks[1], k.blocks[2],
-      k.empty, k.entries, b.triangles, b.nodes, b.axis_splits, b.depth);
+      k.empty, k.marked, k.entries, b.triangles, b.nodes, b.axis_splits, b.depth);
   return buf;
 }
 

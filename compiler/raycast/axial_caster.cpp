@@ -1,5 +1,7 @@
 #include "compiler/raycast/axial_caster.hpp"
 
+#include <glm/common.hpp>
+
 namespace walk::compiler {
 namespace {
 
@@ -17,8 +19,15 @@ AxialCaster::AxialCaster(std::span<const Triangle> triangles, const BlockSizing&
       axial_(local_.triangles.size(), 0),
       planes_(local_, axial_, sizing),
       bsp_(local_, not_taken(axial_)) {
-  std::vector<std::uint8_t>().swap(axial_);
   bsp_first_ = bsp_.stats().triangles > planes_.stats().triangles;
+  // The blocks the BSP's triangles reach: a ray whose plane walk passes none of them skips the BSP.
+  bsp_marked_ = !bsp_first_ && !bsp_.empty();
+  for (const std::uint32_t i : not_taken(axial_)) {
+    if (!bsp_marked_) break;
+    const Triangle& t = local_.triangles[i];
+    bsp_marked_ = planes_.mark(glm::min(t.a, glm::min(t.b, t.c)), glm::max(t.a, glm::max(t.b, t.c)));
+  }
+  std::vector<std::uint8_t>().swap(axial_);
   if (bsp_.empty()) {  // only the BSP reads the triangles after the build
     std::vector<Triangle>().swap(local_.triangles);
     std::vector<model::Vec3>().swap(local_.normals);
@@ -34,6 +43,12 @@ RayHit AxialCaster::closest(const Ray& ray) const {
   if (bsp_first_) {
     if (!bsp_.empty()) bsp_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
     planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
+  } else if (bsp_marked_) {
+    // The BSP only over the span of blocks holding its triangles that the walk passed before its hit.
+    MarkedSpan span;
+    planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best, &span);
+    if (!span.empty())
+      bsp_.closest(o, ray.dir, std::max(tmin, span.first), std::min(ray.tmax, span.last), tie, best);
   } else {
     planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
     if (!bsp_.empty()) bsp_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
@@ -47,6 +62,12 @@ bool AxialCaster::occluded(const Ray& ray) const {
   const double tmin = std::max(ray.tmin, 0.0);
   const auto in_bsp = [&] { return !bsp_.empty() && bsp_.occluded(o, ray.dir, tmin, ray.tmax); };
   if (bsp_first_) return in_bsp() || planes_.occluded(o, ray.dir, tmin, ray.tmax);
+  if (bsp_marked_) {
+    MarkedSpan span;
+    if (planes_.occluded(o, ray.dir, tmin, ray.tmax, &span)) return true;
+    return !span.empty() &&
+           bsp_.occluded(o, ray.dir, std::max(tmin, span.first), std::min(ray.tmax, span.last));
+  }
   return planes_.occluded(o, ray.dir, tmin, ray.tmax) || in_bsp();
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The paper's ray caster: axial polygons in sorted planes (AxialPlanes), the rest in a BSP tree (PolygonBsp)
-// searched only up to the axial hit. When the BSP holds most of the model (a sculpted, non-axial mesh) the
+// searched only up to the axial hit, and only over the blocks holding its triangles that the walk passed
+// (none: no BSP search at all). When the BSP holds most of the model (a sculpted, non-axial mesh) the
 // order turns round: the BSP first, and the plane walk stops at its hit.
 #include "compiler/raycast/axial_planes.hpp"
 #include "compiler/raycast/polygon_bsp.hpp"
@@ -24,6 +25,7 @@ class AxialCaster final : public RayCaster {
   AxialPlanes planes_;
   PolygonBsp bsp_;
   bool bsp_first_ = false;
+  bool bsp_marked_ = false;  // the planes' blocks are marked where the BSP's triangles are
 };
 
 }  // namespace walk::compiler

@@ -123,7 +123,7 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
 
 template <bool kAny>
 bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, double tmax, double tie,
-                       RayHit* best) const {
+                       RayHit* best, MarkedSpan* marked) const {
   double limit = tmax;
   bool any = false;
   blocks_.walk<!kAny>(
@@ -158,19 +158,20 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
         const char* p = reinterpret_cast<const char*>(cell_elements_.data() + first);
         const char* q = reinterpret_cast<const char*>(cell_elements_.data() + end);
         for (int line = 0; line < 4 && p < q; ++line, p += 64) __builtin_prefetch(p);
-      });
+      },
+      marked);
   return any;
 }
 
 void AxialPlanes::closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
-                          double tie, RayHit& best) const {
+                          double tie, RayHit& best, MarkedSpan* marked) const {
   if (best.hit()) tmax = std::min(tmax, best.t + tie);
-  walk<false>(origin, dir, tmin, tmax, tie, &best);
+  walk<false>(origin, dir, tmin, tmax, tie, &best, marked);
 }
 
-bool AxialPlanes::occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin,
-                           double tmax) const {
-  return walk<true>(origin, dir, tmin, tmax, 0.0, nullptr);
+bool AxialPlanes::occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
+                           MarkedSpan* marked) const {
+  return walk<true>(origin, dir, tmin, tmax, 0.0, nullptr, marked);
 }
 
 std::size_t AxialPlanes::memory_bytes() const {

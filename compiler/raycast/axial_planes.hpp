@@ -40,10 +40,13 @@ class AxialPlanes {
               const BlockSizing& sizing = {});
 
   // Improves `best` with the closest axial hit in (tmin, min(tmax, best.t + tie)); origin is local.
+  // `marked` (may be null): see PlaneBlocks::walk.
   void closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
-               RayHit& best) const;
-  [[nodiscard]] bool occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin,
-                              double tmax) const;
+               RayHit& best, MarkedSpan* marked = nullptr) const;
+  [[nodiscard]] bool occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
+                              MarkedSpan* marked = nullptr) const;
+  // Marks the blocks the box reaches (PlaneBlocks::mark).
+  bool mark(const model::Vec3& lo, const model::Vec3& hi) { return blocks_.mark(lo, hi); }
 
   [[nodiscard]] const Stats& stats() const { return stats_; }
   [[nodiscard]] const PlaneBlocks& blocks() const { return blocks_; }
@@ -63,7 +66,7 @@ class AxialPlanes {
   };
   template <bool kAny>
   bool walk(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
-            RayHit* best) const;
+            RayHit* best, MarkedSpan* marked) const;
 
   std::vector<EdgeLine> edges_;
   // Elements copied in place per block listing (PlaneBlocks::items order): a crossing reads one contiguous

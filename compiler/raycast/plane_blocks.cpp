@@ -33,6 +33,7 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
   for (int k = 0; k < 3; ++k)  // an axis no plane spans (a flat model) still gets one layer
     if (!(lo[k] <= hi[k])) lo[k] = hi[k] = 0.0;
   const double margin = kBlockMargin * std::max(glm::length(hi - lo), 1.0);
+  margin_ = margin;
   lo -= model::Vec3(margin);
   hi += model::Vec3(margin);
 
@@ -150,6 +151,27 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
           entries_[blocks_[blk].end[2] - 1].first + entries_[blocks_[blk].end[2] - 1].count;
     }
   stats_.entries = entries_.size();
+}
+
+bool PlaneBlocks::mark(const model::Vec3& lo, const model::Vec3& hi) {
+  if (blocks_.empty()) return false;
+  for (int k = 0; k < 3; ++k)
+    if (!(lo[k] >= edges_[k].front() && hi[k] <= edges_[k].back())) return false;
+  int range[3][2];
+  for (int k = 0; k < 3; ++k) {
+    const auto [first, last] = layers_meeting(edges_[k], lo[k], hi[k], margin_);
+    range[k][0] = first;
+    range[k][1] = last;
+  }
+  int idx[3];
+  for (idx[2] = range[2][0]; idx[2] <= range[2][1]; ++idx[2])
+    for (idx[1] = range[1][0]; idx[1] <= range[1][1]; ++idx[1])
+      for (idx[0] = range[0][0]; idx[0] <= range[0][1]; ++idx[0]) {
+        Block& b = blocks_[block_index(idx)];
+        if (!b.marked) ++stats_.marked;
+        b.marked = true;
+      }
+  return true;
 }
 
 std::size_t PlaneBlocks::memory_bytes() const {

@@ -166,6 +166,84 @@ TEST(PlaneBlocks, FlatModelHasOneLayerAndStillFindsEveryTile) {
       expect_same(ours, reference, tris, {V(x, y, 0.0) + V(centre.x, centre.y, 7.0), V(0, 0, -1)}, tally);
 }
 
+// Small slanted triangles (BSP) scattered through an open box of axial tiles, one with a corner exactly on an
+// interior block corner; `outside` adds one beyond the tiles' bounds, which the blocks cannot place.
+std::vector<Triangle> box_with_slanted(const std::vector<double>& corner, bool outside) {
+  auto tris = cube_lattice(4, {0.0, 4.0});
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> pos(0.5, 3.5);
+  auto polygon = static_cast<std::uint32_t>(tris.size());
+  for (int i = 0; i < 40; ++i) {
+    const V p(pos(rng), pos(rng), pos(rng));
+    tris.push_back({p, p + 0.3 * random_unit(rng), p + 0.3 * random_unit(rng), polygon++});
+  }
+  const V c(corner[0], corner[1], corner[2]);
+  tris.push_back({c, c + V(0.3, 0.2, 0.1), c + V(-0.1, 0.3, 0.2), polygon++});
+  if (outside) tris.push_back({V(6, 1, 1), V(6.5, 2, 1.5), V(6.2, 1.2, 2.5), polygon++});
+  return tris;
+}
+
+TEST(PlaneBlocks, BspSearchOverTheMarkedBlocksFindsEveryHit) {
+  // The first build gives the block edges; the same bounds and counts give the same blocks again.
+  const V centre(2.0, 2.0, 2.0);
+  const AxialCaster probe(box_with_slanted({2, 2, 2}, false), kTestBlocks);
+  std::vector<double> corner(3);
+  for (int k = 0; k < 3; ++k) {
+    const auto& e = probe.planes().blocks().edges(k);
+    ASSERT_GE(e.size(), 4u);
+    corner[k] = e[e.size() / 2] + centre[k];
+  }
+  for (const bool outside : {false, true}) {
+    const auto tris = box_with_slanted(corner, outside);
+    const AxialCaster ours(tris, kTestBlocks);
+    const BruteForceCaster reference(tris);
+    // The one triangle's corner lies on a block corner (exactly without the outside triangle, which moves
+    // the local frame's centre).
+    const V shift = whole_metre_centre(tris) - centre;
+    for (int k = 0; k < 3; ++k) {
+      const auto& e = ours.planes().blocks().edges(k);
+      const auto& f = probe.planes().blocks().edges(k);
+      ASSERT_EQ(e.size(), f.size());
+      for (std::size_t i = 0; i < e.size(); ++i) ASSERT_NEAR(e[i] + shift[k], f[i], 1e-12);
+    }
+    const auto& stats = ours.planes().blocks().stats();
+    const std::size_t blocks = stats.blocks[0] * stats.blocks[1] * stats.blocks[2];
+    // Inside the tiles' bounds the slanted triangles mark some blocks, not all: rays skip the BSP elsewhere.
+    if (!outside) {
+      EXPECT_GT(stats.marked, 0u);
+      EXPECT_LT(stats.marked, blocks);
+    }
+    std::mt19937_64 rng(outside ? 31 : 30);
+    std::uniform_real_distribution<double> pos(0.05, 3.95), w(0.0, 1.0);
+    Tally tally;
+    const std::size_t first_slanted = 6 * 8 * 8 * 2;
+    for (std::size_t i = first_slanted; i < tris.size(); ++i) {
+      const Triangle& t = tris[i];
+      for (int j = 0; j < 40; ++j) {
+        // Vertices, points on edges and inside, from anywhere in the box (and from beyond the outside one).
+        double a = w(rng), b = w(rng);
+        if (j % 4 == 0) a = b = 0.0;
+        if (j % 4 == 1) b = 0.0;
+        if (a + b > 1.0) {
+          a = 1.0 - a;
+          b = 1.0 - b;
+        }
+        const V target = t.a + a * (t.b - t.a) + b * (t.c - t.a);
+        const V o = t.a.x > 5.0 ? V(8.0, pos(rng), pos(rng)) : V(pos(rng), pos(rng), pos(rng));
+        expect_same(ours, reference, tris, {o, target - o}, tally);
+        // Segments ending just short of the target and just past it (occlusion rays).
+        expect_same(ours, reference, tris, {o, target - o, 0.0, 0.999}, tally);
+        expect_same(ours, reference, tris, {o, target - o, 0.0, 1.001}, tally);
+      }
+    }
+    for (int i = 0; i < 5000; ++i)
+      expect_same(ours, reference, tris, {V(pos(rng), pos(rng), pos(rng)), random_unit(rng)}, tally);
+    EXPECT_LE(tally.edge_cases, tally.checked / 100);
+    std::printf("slanted in blocks (outside %d): %zu of %zu blocks marked, %d rays, %d edge cases\n", outside,
+                stats.marked, blocks, tally.checked, tally.edge_cases);
+  }
+}
+
 TEST(PlaneBlocks, EmptyAndSingleTriangleModels) {
   const AxialCaster none(std::vector<Triangle>{});
   EXPECT_FALSE(none.closest({V(0, 0, 0), V(1, 0, 0)}).hit());
