@@ -188,7 +188,21 @@ class Flow {
         target = clip_front(target, s);
       }
       if (target.empty()) continue;
-      recurse(d.to, next_source, &target, &d.plane, next_might);
+      // Only part of the source sees the target through the pass: clip it by the planes separating the
+      // target and the pass, both ways (as Quake's vis clips its source), so that every portal beyond is
+      // clipped by the planes of a narrower source.
+      Winding narrowed = next_source;
+      if (pass) {
+        std::vector<Plane> back;
+        separating_planes(target, *pass, false, back);
+        separating_planes(*pass, target, true, back);
+        for (const auto& s : back) {
+          narrowed = clip_front(narrowed, s);
+          if (narrowed.empty()) break;
+        }
+        if (narrowed.empty()) continue;
+      }
+      recurse(d.to, narrowed, &target, &d.plane, next_might);
       if (steps_ > budget_) break;
     }
     on_stack_[cell] = 0;

@@ -147,6 +147,38 @@ TEST(Pvs, FlowPastItsBudgetTakesWhatItsPortalsMightSee) {
   }
 }
 
+TEST(Pvs, SourceNarrowsToWhatSeesThroughEachDoor) {
+  // Rooms along x, 10 m wide and 3 m high: A [0, 1], B [1, 2], C [2, 3], D [3, 4], E [4, 10]; doors 2 m
+  // high at x = 1 (y 0.5..9.5), x = 2 (y 4..6), x = 3 (y 8..9.5), x = 4 (y 0.5..9.5). In plan a sight line
+  // through the doors at x = 2 and 3 leaves A's door at y <= 4, and from there crosses x = 4 at y >= 10:
+  // nothing in E is seen from A. Through the whole of A's door (a source never narrowed) the flow would
+  // reach E and keep its far wall.
+  MiniBuilding m;
+  const double xs[] = {0.0, 1.0, 2.0, 3.0, 4.0, 10.0};
+  for (int r = 0; r < 5; ++r) {
+    m.rect(2, 0.0, xs[r], xs[r + 1], 0, 10);
+    m.rect(2, 3.0, xs[r], xs[r + 1], 0, 10);
+    m.rect(1, 0.0, 0, 3, xs[r], xs[r + 1]);
+    m.rect(1, 10.0, 0, 3, xs[r], xs[r + 1]);
+  }
+  m.rect(0, 0.0, 0, 10, 0, 3);
+  const auto far_wall = m.rect(0, 10.0, 0, 10, 0, 3);
+  m.rect_with_hole(0, 1.0, 0, 10, 0, 3, 0.5, 9.5, 0.0, 2.0);
+  m.rect_with_hole(0, 2.0, 0, 10, 0, 3, 4.0, 6.0, 0.0, 2.0);
+  m.rect_with_hole(0, 3.0, 0, 10, 0, 3, 8.0, 9.5, 0.0, 2.0);
+  m.rect_with_hole(0, 4.0, 0, 10, 0, 3, 0.5, 9.5, 0.0, 2.0);
+  for (const auto method : {PvsMethod::Conservative, PvsMethod::Combined}) {
+    const Judged j = judge(m, method);
+    EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
+    const std::uint32_t a = locate(j.vis.partition.nodes, {0.5, 5.0, 1.0});
+    const std::uint32_t e = locate(j.vis.partition.nodes, {9.0, 5.0, 1.0});
+    EXPECT_FALSE(has(j.vis.pvs[a], far_wall)) << pvs_method_name(method);
+    EXPECT_TRUE(has(j.vis.pvs[e], far_wall));
+    for (std::size_t c = 0; c < j.exact.size(); ++c)
+      for (const auto p : j.exact[c]) EXPECT_TRUE(has(j.vis.pvs[c], p)) << "cell " << c << " polygon " << p;
+  }
+}
+
 TEST(Pvs, PortalsMeetingAtACellCorner) {
   // Four rooms around (4,4): each dividing wall has its opening against the middle, so the four
   // openings meet along the vertical line x = y = 4 and the diagonal rooms see each other across it.
