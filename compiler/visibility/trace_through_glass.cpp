@@ -14,7 +14,11 @@ RayHit trace_through_glass(const RayCaster& caster, Ray ray, const std::vector<c
       ids.push_back(h.polygon);
       if (!see_through) return h;
     }
-    ray.tmin = h.t + self_hit_tmin(ray.dir);
+    // On from just past this hit: the tie distance, not the self-hit distance. The ray's origin has not
+    // moved, so its t values carry no origin rounding; a wall's back-to-back copy a rounding apart (38 nm in
+    // the house's slanted walls) lies well inside the 1 um self-hit distance and would be skipped with it,
+    // letting the sight line through a wall the renderer draws.
+    ray.tmin = h.t + tie_tolerance(ray.dir);
   }
   return last;
 }
