@@ -36,10 +36,10 @@ std::string VisibilityResult::summary() const {
   return fmt::format(
       "{} cells (depth {}, {} candidate planes), {} portals, {} leaks, PVS avg {:.0f} worst {} of {} "
       "polygons; "
-      "flow {} steps, {} fallbacks; {} sample rays; {} back faces dropped; "
+      "flow {} steps, {} fallbacks, {} occluded; {} sample rays; {} back faces dropped; "
       "partition {:.2f} s portals {:.2f} s pvs {:.2f} s",
       partition.cells.size(), partition.depth, partition.candidates, graph.portals.size(), graph.leaks.size(),
-      avg, worst, polygons.size(), flow_steps, flow_fallbacks, sample_rays, back_faces_dropped,
+      avg, worst, polygons.size(), flow_steps, flow_fallbacks, flow_occluded, sample_rays, back_faces_dropped,
       seconds_partition, seconds_portals, seconds_pvs);
 }
 
@@ -72,8 +72,11 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
         &r.sample_rays);
   }
   if (config.method != PvsMethod::Sampled) {
-    FlowPvs flow = portal_flow_pvs(r.partition, r.graph, r.polygons, config.flow_budget, config.threads);
+    FlowPvs flow =
+        portal_flow_pvs(r.partition, r.graph, r.polygons,
+                        {config.flow_budget, config.threads, config.occluders, config.cull_back_faces});
     r.flow_steps = flow.steps;
+    r.flow_occluded = flow.occluded;
     r.flow_fallbacks = flow.fallbacks;
     r.flow_cells = std::move(flow.cells);
     flow_polys = std::move(flow.polygons);

@@ -19,6 +19,7 @@ struct VisibilityResult {
   std::vector<std::vector<std::uint32_t>> flow_cells;  // per cell, cells reached by portal flow (not Sampled)
   std::uint64_t flow_steps = 0;
   std::uint32_t flow_fallbacks = 0;
+  std::uint64_t flow_occluded = 0;  // polygon and portal tests an occluder inside a cell settled
   std::uint64_t sample_rays = 0;
   std::uint64_t back_faces_dropped = 0;  // (cell, polygon) pairs left out by cull_back_faces
   double seconds_partition = 0.0, seconds_portals = 0.0, seconds_pvs = 0.0;

@@ -40,8 +40,12 @@ bool partly_in_front(const Winding& w, const Plane& p) {
 struct FlowGraph {
   std::vector<std::vector<Directed>> out;  // per cell: portals sight lines may leave it through
   std::vector<std::vector<std::uint32_t>> cells_of_polygon;
+  std::vector<std::vector<Occluder>> occluders;  // per cell (empty without occluder culling)
 
-  FlowGraph(const Partition& part, const PortalGraph& g, std::size_t polygons) : out(part.cells.size()) {
+  FlowGraph(const Partition& part, const PortalGraph& g, const std::vector<VisPolygon>& polygons,
+            bool with_occluders)
+      : out(part.cells.size()) {
+    if (with_occluders) occluders = cell_occluders(part, polygons);
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
       for (const auto id : g.cell_portals[c]) {
         const Portal& p = g.portals[id];
@@ -69,7 +73,7 @@ struct FlowGraph {
             }
         }
       }
-    cells_of_polygon.resize(polygons);
+    cells_of_polygon.resize(polygons.size());
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
       for (const auto p : part.cell_polygons[c]) cells_of_polygon[p].push_back(c);
   }
@@ -78,11 +82,12 @@ struct FlowGraph {
 class Flow {
  public:
   Flow(const Partition& part, const FlowGraph& graph, const std::vector<VisPolygon>& polys,
-       std::uint64_t budget)
-      : part_(part), graph_(graph), polys_(polys), budget_(budget) {}
+       const FlowOptions& options)
+      : part_(part), graph_(graph), polys_(polys), budget_(options.budget), cull_(options.cull_back_faces) {}
 
   void run(std::uint32_t cell, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& visible,
-           std::uint64_t& steps, bool& fell_back) {
+           std::uint64_t& steps, std::uint64_t& occluded, bool& fell_back) {
+    occluded_ = 0;
     seen_cell_.assign(part_.cells.size(), 0);
     seen_poly_.assign(polys_.size(), 0);
     done_.assign((part_.cells.size() + 63) / 64, 0);
@@ -102,6 +107,7 @@ class Flow {
     fell_back = steps_ > budget_;
     if (fell_back) might_see_all(cell);
     steps += steps_;
+    occluded += occluded_;
     for (std::uint32_t c = 0; c < seen_cell_.size(); ++c)
       if (seen_cell_[c]) cells.push_back(c);
     for (std::uint32_t p = 0; p < seen_poly_.size(); ++p)
@@ -154,6 +160,18 @@ class Flow {
     return true;
   }
 
+  // Is `w` (in `cell` or on its boundary) wholly hidden behind one of the cell's occluders from `light`,
+  // a portal every sight line into the cell crosses?
+  bool occluded(const Winding& w, std::uint32_t cell, const Winding& light) {
+    if (graph_.occluders.empty()) return false;
+    for (const auto& o : graph_.occluders[cell])
+      if (hidden_by(w, light, o, cull_)) {
+        ++occluded_;
+        return true;
+      }
+    return false;
+  }
+
   // Entering `cell`, seen from `source` (part of the first portal) through `pass` (the last portal passed,
   // clipped), or directly through the first portal when pass is null.
   // `might`: the cells every portal passed so far might see.
@@ -161,8 +179,12 @@ class Flow {
                const Bits& might) {
     if (++steps_ > budget_) return;
     std::vector<Plane> seps;
+    const Winding& light = pass ? *pass : source;  // every sight line into the cell crosses it
     if (!pass) {
-      mark_all(cell);  // the cell just beyond the first portal: anything in it may be seen
+      // The cell just beyond the first portal: anything in it may be seen, unless an occluder hides it.
+      see_cell(cell);
+      for (const auto p : part_.cell_polygons[cell])
+        if (!seen_poly_[p] && !occluded(polys_[p].hull, cell, light)) see_polygon(p);
     } else {
       see_cell(cell);
       separating_planes(source, *pass, false, seps);
@@ -171,7 +193,8 @@ class Flow {
       test.push_back(*pass_plane);
       test.push_back(source_plane_);
       for (const auto p : part_.cell_polygons[cell])
-        if (!seen_poly_[p] && survives(polys_[p].hull, test)) see_polygon(p);
+        if (!seen_poly_[p] && survives(polys_[p].hull, test) && !occluded(polys_[p].hull, cell, light))
+          see_polygon(p);
     }
     on_stack_[cell] = 1;
     Bits next_might(might.size());
@@ -187,7 +210,7 @@ class Flow {
         if (target.empty()) break;
         target = clip_front(target, s);
       }
-      if (target.empty()) continue;
+      if (target.empty() || occluded(target, cell, light)) continue;
       // Only part of the source sees the target through the pass: clip it by the planes separating the
       // target and the pass, both ways (as Quake's vis clips its source), so that every portal beyond is
       // clipped by the planes of a narrower source.
@@ -212,6 +235,8 @@ class Flow {
   const FlowGraph& graph_;
   const std::vector<VisPolygon>& polys_;
   std::uint64_t budget_;
+  bool cull_;
+  std::uint64_t occluded_ = 0;
   std::vector<char> seen_cell_, seen_poly_, on_stack_;
   std::vector<std::uint32_t> unseen_in_cell_;
   Bits done_;
@@ -222,22 +247,23 @@ class Flow {
 }  // namespace
 
 FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
-                        const std::vector<VisPolygon>& polygons, std::uint64_t budget, unsigned threads) {
+                        const std::vector<VisPolygon>& polygons, const FlowOptions& options) {
   FlowPvs r;
   const std::size_t n = partition.cells.size();
   r.cells.resize(n);
   r.polygons.resize(n);
-  std::vector<std::uint64_t> steps(n, 0);
+  std::vector<std::uint64_t> steps(n, 0), occluded(n, 0);
   std::vector<char> fell(n, 0);
-  const FlowGraph flow_graph(partition, graph, polygons.size());
-  parallel_for(n, threads, [&](std::size_t c) {
-    Flow flow(partition, flow_graph, polygons, budget);
+  const FlowGraph flow_graph(partition, graph, polygons, options.occluders);
+  parallel_for(n, options.threads, [&](std::size_t c) {
+    Flow flow(partition, flow_graph, polygons, options);
     bool fb = false;
-    flow.run(static_cast<std::uint32_t>(c), r.cells[c], r.polygons[c], steps[c], fb);
+    flow.run(static_cast<std::uint32_t>(c), r.cells[c], r.polygons[c], steps[c], occluded[c], fb);
     fell[c] = fb;
   });
   for (std::size_t c = 0; c < n; ++c) {
     r.steps += steps[c];
+    r.occluded += occluded[c];
     r.fallbacks += fell[c];
   }
   return r;

@@ -2,11 +2,14 @@
 // Conservative PVS by portal flow (Teller & Sequin 1991 as done in Quake's vis): from each portal of a cell,
 // walk portal sequences, clipping each next portal by the separating planes of the source portal and the
 // last portal passed; a cell is reached when some sequence survives to it. Each polygon of a reached cell is
-// then tested against the same planes, which makes the set tight per polygon, not just per cell.
+// then tested against the same planes, which makes the set tight per polygon, not just per cell. With
+// `occluders`, polygons and portals wholly in the umbra of one convex wall inside their cell, seen from the
+// last portal passed, are left out too (occluders.hpp).
 #include <cstdint>
 #include <vector>
 
 #include "compiler/partition/portals.hpp"
+#include "compiler/visibility/occluders.hpp"
 
 namespace walk::compiler {
 
@@ -15,10 +18,17 @@ struct FlowPvs {
   std::vector<std::vector<std::uint32_t>> polygons;  // per cell: polygons passing the plane test (sorted)
   std::uint64_t steps = 0;                           // recursion steps in all
   std::uint32_t fallbacks = 0;  // cells whose flow ran past the budget (all they might see)
+  std::uint64_t occluded = 0;   // polygon and portal tests an occluder settled
+};
+
+struct FlowOptions {
+  std::uint64_t budget = 2'000'000;
+  unsigned threads = 0;
+  bool occluders = true;        // single-occluder culling inside cells
+  bool cull_back_faces = true;  // occluders block only sight lines meeting their front
 };
 
 [[nodiscard]] FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
-                                      const std::vector<VisPolygon>& polygons, std::uint64_t budget,
-                                      unsigned threads);
+                                      const std::vector<VisPolygon>& polygons, const FlowOptions& options);
 
 }  // namespace walk::compiler

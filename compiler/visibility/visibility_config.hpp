@@ -36,6 +36,9 @@ struct VisibilityConfig {
   // faces, so it would never draw them there (EnergyPlus buildings hold every interzone wall twice, back to
   // back, and a room's PVS held both copies of each wall it sees).
   bool cull_back_faces = true;
+  // The flow also leaves out what lies wholly behind one convex wall inside a cell, seen from the portal
+  // it came through (visibility/occluders.hpp): walls the axial cells cannot follow, such as diagonal ones.
+  bool occluders = true;
   std::string ray_caster = "axial";
   unsigned threads = 0;  // 0: hardware concurrency
   std::uint64_t seed = 1;

@@ -179,6 +179,39 @@ TEST(Pvs, SourceNarrowsToWhatSeesThroughEachDoor) {
   }
 }
 
+TEST(Pvs, AWallInsideACellHidesWhatLiesBehindIt) {
+  // Two rooms and a door (x = 4, y 1.5..2.5); in the far room a slanted wall, which no axial cell face
+  // follows, stands between the door and a small box: the box lies in the wall's umbra seen from the door.
+  MiniBuilding m = row_of_rooms({true});
+  const model::Vec3 a(5.0, 0.2, 0.0), b(5.4, 3.8, 0.0), c(5.4, 3.8, 2.95), d(5.0, 0.2, 2.95);
+  m.quad(a, d, c, b);  // facing the door (-x)
+  m.quad(a, b, c, d);  // and its back, facing the box
+  const auto first_box = static_cast<std::uint32_t>(m.b.polygons.size());
+  m.room({6.9, 1.9, 0.2}, {7.1, 2.1, 0.4});
+  const auto end_box = static_cast<std::uint32_t>(m.b.polygons.size());
+  for (const bool occluders : {true, false}) {
+    VisibilityConfig config = test_config(PvsMethod::Combined, true);
+    config.occluders = occluders;
+    const VisibilityResult vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+    const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(true));
+    std::uint64_t missed = 0;
+    for (std::uint32_t cell = 0; cell < vis.partition.cells.size(); ++cell) {
+      const Box& box = vis.partition.cells[cell];
+      missed += judge.missed(judge.views(box, cell, portal_viewpoints(vis.graph, box, cell)), vis.pvs[cell]);
+    }
+    EXPECT_EQ(missed, 0u) << "occluders " << occluders;
+    const std::uint32_t near_room = locate(vis.partition.nodes, {1, 2, 1});
+    std::size_t box_faces = 0;
+    for (std::uint32_t p = first_box; p < end_box; ++p) box_faces += has(vis.pvs[near_room], p) ? 1 : 0;
+    if (occluders) {
+      EXPECT_EQ(box_faces, 0u) << "the box behind the wall, from the room with the door";
+      EXPECT_GT(vis.flow_occluded, 0u);
+    } else {
+      EXPECT_GT(box_faces, 0u) << "without occluders the flow keeps it";
+    }
+  }
+}
+
 TEST(Pvs, PortalsMeetingAtACellCorner) {
   // Four rooms around (4,4): each dividing wall has its opening against the middle, so the four
   // openings meet along the vertical line x = y = 4 and the diagonal rooms see each other across it.
