@@ -96,31 +96,28 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
     const PlaneBox& b = boxes[i];
     if (i > 0 && (boxes[i - 1].axis != b.axis || boxes[i - 1].plane != b.plane)) flush();
     const int k = b.axis, u = kPlaneU[k], v = kPlaneV[k];
-    const auto [k0, k1] = layers_meeting(edges_[k], b.coord, b.coord, margin);
-    const auto [u0, u1] = layers_meeting(edges_[u], b.u0, b.u1, margin);
-    const auto [v0, v1] = layers_meeting(edges_[v], b.v0, b.v1, margin);
-    for (int ik = k0; ik <= k1; ++ik)
-      for (int iu = u0; iu <= u1; ++iu)
-        for (int iv = v0; iv <= v1; ++iv) {
-          int idx[3];
-          idx[k] = ik;
-          idx[u] = iu;
-          idx[v] = iv;
-          const auto blk = static_cast<std::uint32_t>(block_index(idx));
-          if (slot[blk] == UINT32_MAX) {
-            slot[blk] = static_cast<std::uint32_t>(listed.size());
-            touched.push_back(blk);
-            listed.push_back({blk, {b.coord, b.u0, b.u1, b.v0, b.v1, 0, 0}, {b.item}});
-            axis_of.push_back(static_cast<std::uint8_t>(k));
-          } else {
-            listed[slot[blk]].items.push_back(b.item);
-            Entry& e = listed[slot[blk]].entry;
-            e.u0 = std::min(e.u0, b.u0);
-            e.u1 = std::max(e.u1, b.u1);
-            e.v0 = std::min(e.v0, b.v0);
-            e.v1 = std::max(e.v1, b.v1);
-          }
-        }
+    model::Vec3 box_lo, box_hi;
+    box_lo[k] = box_hi[k] = b.coord;
+    box_lo[u] = b.u0;
+    box_hi[u] = b.u1;
+    box_lo[v] = b.v0;
+    box_hi[v] = b.v1;
+    for_blocks_meeting(box_lo, box_hi, [&](std::size_t block) {
+      const auto blk = static_cast<std::uint32_t>(block);
+      if (slot[blk] == UINT32_MAX) {
+        slot[blk] = static_cast<std::uint32_t>(listed.size());
+        touched.push_back(blk);
+        listed.push_back({blk, {b.coord, b.u0, b.u1, b.v0, b.v1, 0, 0}, {b.item}});
+        axis_of.push_back(static_cast<std::uint8_t>(k));
+      } else {
+        listed[slot[blk]].items.push_back(b.item);
+        Entry& e = listed[slot[blk]].entry;
+        e.u0 = std::min(e.u0, b.u0);
+        e.u1 = std::max(e.u1, b.u1);
+        e.v0 = std::min(e.v0, b.v0);
+        e.v1 = std::max(e.v1, b.v1);
+      }
+    });
   }
 
   // Counting sort by (block, axis); stable, so each axis' entries stay in increasing coordinate.
@@ -157,21 +154,22 @@ bool PlaneBlocks::mark(const model::Vec3& lo, const model::Vec3& hi) {
   if (blocks_.empty()) return false;
   for (int k = 0; k < 3; ++k)
     if (!(lo[k] >= edges_[k].front() && hi[k] <= edges_[k].back())) return false;
-  int range[3][2];
-  for (int k = 0; k < 3; ++k) {
-    const auto [first, last] = layers_meeting(edges_[k], lo[k], hi[k], margin_);
-    range[k][0] = first;
-    range[k][1] = last;
-  }
-  int idx[3];
-  for (idx[2] = range[2][0]; idx[2] <= range[2][1]; ++idx[2])
-    for (idx[1] = range[1][0]; idx[1] <= range[1][1]; ++idx[1])
-      for (idx[0] = range[0][0]; idx[0] <= range[0][1]; ++idx[0]) {
-        Block& b = blocks_[block_index(idx)];
-        if (!b.marked) ++stats_.marked;
-        b.marked = true;
-      }
+  for_blocks_meeting(lo, hi, [&](std::size_t block) {
+    Block& b = blocks_[block];
+    if (!b.marked) ++stats_.marked;
+    b.marked = true;
+  });
   return true;
+}
+
+template <class F>
+void PlaneBlocks::for_blocks_meeting(const model::Vec3& lo, const model::Vec3& hi, F&& f) const {
+  std::pair<int, int> range[3];
+  for (int k = 0; k < 3; ++k) range[k] = layers_meeting(edges_[k], lo[k], hi[k], margin_);
+  int idx[3];
+  for (idx[2] = range[2].first; idx[2] <= range[2].second; ++idx[2])
+    for (idx[1] = range[1].first; idx[1] <= range[1].second; ++idx[1])
+      for (idx[0] = range[0].first; idx[0] <= range[0].second; ++idx[0]) f(block_index(idx));
 }
 
 std::size_t PlaneBlocks::memory_bytes() const {

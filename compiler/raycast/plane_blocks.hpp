@@ -126,6 +126,9 @@ class PlaneBlocks {
   [[nodiscard]] std::size_t block_index(const int idx[3]) const {
     return (static_cast<std::size_t>(idx[2]) * n_[1] + idx[1]) * n_[0] + idx[0];
   }
+  // Calls f(block index) for every block that the box [lo, hi] reaches within the margin.
+  template <class F>
+  void for_blocks_meeting(const model::Vec3& lo, const model::Vec3& hi, F&& f) const;
   // The layer of blocks along axis k whose edges (in t, as the walk computes them) enclose t.
   [[nodiscard]] int layer_at(int k, double ok, double dk, double inv, double t) const;
 

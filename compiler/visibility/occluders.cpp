@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <utility>
 
 namespace walk::compiler {
 namespace {
@@ -19,19 +20,30 @@ double area(const Winding& w, const model::Vec3& normal) {
 constexpr double kConvexArea = 1e-6;
 
 bool inside(const Occluder& o, const model::Vec3& q) {
-  for (std::size_t i = 0; i < o.outline.size(); ++i) {
-    const model::Vec3& a = o.outline[i];
-    const model::Vec3& b = o.outline[(i + 1) % o.outline.size()];
-    const model::Vec3 e = b - a;
-    const double len = glm::length(e);
-    if (!(len > 0.0)) return false;
-    // Distance of q inside the edge's line, in the plane (counter-clockwise winding: inside is on the left).
-    if (glm::dot(glm::cross(e, q - a), o.plane.n) / len < kPlaneEpsilon) return false;
-  }
+  for (const Plane& e : o.edges)
+    if (e.distance(q) < kPlaneEpsilon) return false;
   return true;
 }
 
 }  // namespace
+
+std::optional<Occluder> make_occluder(Winding outline, const model::Vec3& normal) {
+  if (outline.size() < 3) return std::nullopt;
+  Occluder o;
+  o.plane = {normal, -glm::dot(normal, outline[0])};
+  o.area = area(outline, normal);
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const model::Vec3& a = outline[i];
+    const model::Vec3 e = outline[(i + 1) % outline.size()] - a;
+    const double len = glm::length(e);
+    if (!(len > 0.0)) return std::nullopt;
+    // Counter-clockwise about the normal: inside is on the left of each edge, along cross(normal, e).
+    const model::Vec3 m = glm::cross(normal, e) / len;
+    o.edges.push_back({m, -glm::dot(m, a)});
+  }
+  o.outline = std::move(outline);
+  return o;
+}
 
 std::vector<std::vector<Occluder>> cell_occluders(const Partition& part,
                                                   const std::vector<VisPolygon>& polygons) {
@@ -39,18 +51,18 @@ std::vector<std::vector<Occluder>> cell_occluders(const Partition& part,
   for (std::size_t c = 0; c < part.cells.size(); ++c) {
     for (const auto p : part.cell_polygons[c]) {
       const VisPolygon& vp = polygons[p];
-      if (!vp.opaque || vp.hull.size() < 3 || glm::length(vp.normal) == 0.0) continue;
-      const Plane plane{vp.normal, -glm::dot(vp.normal, vp.hull[0])};
+      if (!vp.opaque || glm::length(vp.normal) == 0.0) continue;
+      auto o = make_occluder(vp.hull, vp.normal);
+      if (!o) continue;
       double tri_area = 0.0;
       bool planar = true;
       for (const auto& t : vp.triangles) {
         tri_area += 0.5 * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
-        for (const auto& v : t) planar = planar && std::abs(plane.distance(v)) <= kPlaneEpsilon;
+        for (const auto& v : t) planar = planar && std::abs(o->plane.distance(v)) <= kPlaneEpsilon;
       }
-      const double hull_area = area(vp.hull, vp.normal);
-      if (!planar || hull_area < kMinOccluderArea || std::abs(hull_area - tri_area) > kConvexArea * hull_area)
+      if (!planar || o->area < kMinOccluderArea || std::abs(o->area - tri_area) > kConvexArea * o->area)
         continue;
-      out[c].push_back({vp.hull, plane, hull_area});
+      out[c].push_back(std::move(*o));
     }
     auto& list = out[c];
     std::sort(list.begin(), list.end(), [](const Occluder& a, const Occluder& b) { return a.area > b.area; });
@@ -70,15 +82,15 @@ bool hidden_by(const Winding& target, const Winding& light, const Occluder& o, b
     side = d;
   }
   if (cull_back_faces && side < 0.0) return false;
-  std::vector<double> dt(target.size());
-  for (std::size_t j = 0; j < target.size(); ++j) {
-    dt[j] = o.plane.distance(target[j]);
-    if (!(dt[j] * side < 0.0) || std::abs(dt[j]) < kPlaneEpsilon) return false;
+  for (const auto& t : target) {
+    const double d = o.plane.distance(t);
+    if (!(d * side < 0.0) || std::abs(d) < kPlaneEpsilon) return false;
   }
+  // No allocation: the flow asks this for every polygon and portal it reaches.
   for (const auto& l : light) {
     const double dl = o.plane.distance(l);
-    for (std::size_t j = 0; j < target.size(); ++j) {
-      const model::Vec3 q = l + (target[j] - l) * (dl / (dl - dt[j]));  // where the segment crosses the plane
+    for (const auto& t : target) {
+      const model::Vec3 q = l + (t - l) * (dl / (dl - o.plane.distance(t)));  // where the segment crosses
       if (!inside(o, q)) return false;
     }
   }

@@ -5,6 +5,7 @@
 // standing inside a cell (a diagonal wall across a corner, a wall a fraction of a degree off an axis, which
 // the axial partition cannot split along) hide what lies behind them only through this test.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "compiler/partition/partition.hpp"
@@ -13,10 +14,15 @@
 namespace walk::compiler {
 
 struct Occluder {
-  Winding outline;  // convex, counter-clockwise about plane.n
-  Plane plane;      // through the outline; n is the polygon's front normal
+  Winding outline;           // convex, counter-clockwise about plane.n
+  Plane plane;               // through the outline; n is the polygon's front normal
+  std::vector<Plane> edges;  // per outline edge: unit normal in the plane, pointing inside
   double area = 0.0;
 };
+
+// The occluder with this outline (convex, counter-clockwise about the unit `normal`); none when the outline
+// has fewer than three points or an edge of no length (nothing lies strictly inside it).
+[[nodiscard]] std::optional<Occluder> make_occluder(Winding outline, const model::Vec3& normal);
 
 // Occluders smaller than this (m^2) rarely hide a whole polygon or portal; leaving them out keeps the test
 // cheap (a door leaf is about 2 m^2).

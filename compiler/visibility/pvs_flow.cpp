@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <thread>
+#include <utility>
 
 #include "compiler/visibility/parallel_for.hpp"
 
@@ -153,11 +154,7 @@ class Flow {
       for (const auto& v : w) any = any || p.distance(v) >= -kPlaneEpsilon;
       if (!any) return false;
     }
-    for (const auto& p : planes) {
-      w = clip_front(w, p);
-      if (w.empty()) return false;
-    }
-    return true;
+    return !clip_front_all(std::move(w), planes).empty();
   }
 
   // Is `w` (in `cell` or on its boundary) wholly hidden behind one of the cell's occluders from `light`,
@@ -180,13 +177,12 @@ class Flow {
     if (++steps_ > budget_) return;
     std::vector<Plane> seps;
     const Winding& light = pass ? *pass : source;  // every sight line into the cell crosses it
+    see_cell(cell);
     if (!pass) {
       // The cell just beyond the first portal: anything in it may be seen, unless an occluder hides it.
-      see_cell(cell);
       for (const auto p : part_.cell_polygons[cell])
         if (!seen_poly_[p] && !occluded(polys_[p].hull, cell, light)) see_polygon(p);
     } else {
-      see_cell(cell);
       separating_planes(source, *pass, false, seps);
       separating_planes(*pass, source, true, seps);
       std::vector<Plane> test = seps;
@@ -205,11 +201,7 @@ class Flow {
       // The source must lie behind the next portal to see through it.
       const Winding next_source = clip_front(source, d.plane.flipped());
       if (next_source.empty()) continue;
-      Winding target = clip_front(*d.winding, source_plane_);
-      for (const auto& s : seps) {
-        if (target.empty()) break;
-        target = clip_front(target, s);
-      }
+      const Winding target = clip_front_all(clip_front(*d.winding, source_plane_), seps);
       if (target.empty() || occluded(target, cell, light)) continue;
       // Only part of the source sees the target through the pass: clip it by the planes separating the
       // target and the pass, both ways (as Quake's vis clips its source), so that every portal beyond is
@@ -219,10 +211,7 @@ class Flow {
         std::vector<Plane> back;
         separating_planes(target, *pass, false, back);
         separating_planes(*pass, target, true, back);
-        for (const auto& s : back) {
-          narrowed = clip_front(narrowed, s);
-          if (narrowed.empty()) break;
-        }
+        narrowed = clip_front_all(std::move(narrowed), back);
         if (narrowed.empty()) continue;
       }
       recurse(d.to, narrowed, &target, &d.plane, next_might);

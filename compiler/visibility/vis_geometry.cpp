@@ -57,6 +57,14 @@ Winding clip_front(const Winding& w, const Plane& p) {
   return out;
 }
 
+Winding clip_front_all(Winding w, const std::vector<Plane>& planes) {
+  for (const auto& p : planes) {
+    if (w.empty()) break;
+    w = clip_front(w, p);
+  }
+  return w;
+}
+
 Winding convex_hull(const std::vector<model::Vec3>& points, const model::Vec3& normal) {
   if (points.empty()) return {};
   const model::Vec3 n = glm::length(normal) > 0.0 ? glm::normalize(normal) : model::Vec3{0, 0, 1};

@@ -45,6 +45,8 @@ using Winding = std::vector<model::Vec3>;  // convex, planar
 // Keeps the part of `w` on the front side of `p` (distance >= -kPlaneEpsilon); points within epsilon count
 // as on the plane and stay. Empty when all of `w` is behind.
 [[nodiscard]] Winding clip_front(const Winding& w, const Plane& p);
+// clip_front by each plane in turn; empty as soon as nothing is left.
+[[nodiscard]] Winding clip_front_all(Winding w, const std::vector<Plane>& planes);
 
 // Convex hull of planar points, as a winding in their plane (counter-clockwise about `normal`). Fewer than
 // three distinct points, or collinear ones, give the distinct extreme points (a degenerate winding).

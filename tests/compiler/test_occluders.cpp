@@ -15,12 +15,12 @@ using V = model::Vec3;
 
 // A square in the plane y = y0, x and z in [lo, hi], facing -y (towards a light at smaller y).
 Occluder wall(double y0, double lo, double hi) {
-  Occluder o;
   // Counter-clockwise about -y.
-  o.outline = {V(lo, y0, lo), V(hi, y0, lo), V(hi, y0, hi), V(lo, y0, hi)};
-  o.plane = {V(0, -1, 0), y0};
-  o.area = (hi - lo) * (hi - lo);
-  return o;
+  const auto o = make_occluder({V(lo, y0, lo), V(hi, y0, lo), V(hi, y0, hi), V(lo, y0, hi)}, V(0, -1, 0));
+  EXPECT_TRUE(o.has_value());
+  EXPECT_NEAR(o->plane.d, y0, 1e-12);
+  EXPECT_NEAR(o->area, (hi - lo) * (hi - lo), 1e-12);
+  return o.value();  // throws (the test fails) when there is none
 }
 
 Winding square_at(double y, double cx, double cz, double half) {
@@ -90,6 +90,9 @@ TEST(Occluders, OnlyConvexPlanarOpaquePolygonsOccludeLargestFirst) {
   polys[3].hull = {V(0, 3, 0), V(2, 3, 0), V(2, 3, 2), V(0, 3, 2)};
   polys[3].triangles = {{V(0, 3, 0), V(2, 3, 0), V(2, 3, 1)}, {V(0, 3, 0), V(0, 3, 2), V(1, 3, 2)}};
   part.cell_polygons.push_back({0, 1, 2, 3});
+  // No occluder from fewer than three points or an edge of no length.
+  EXPECT_FALSE(make_occluder({V(0, 0, 0), V(1, 0, 0)}, V(0, -1, 0)).has_value());
+  EXPECT_FALSE(make_occluder({V(0, 0, 0), V(0, 0, 0), V(1, 0, 1)}, V(0, -1, 0)).has_value());
   const auto occ = cell_occluders(part, polys);
   ASSERT_EQ(occ.size(), 1u);
   ASSERT_EQ(occ[0].size(), 2u);
