@@ -31,6 +31,8 @@ class PointMap {
   ClipperLib::Path to_path(const std::vector<model::Vec3>& loop);
   void remember(const ClipperLib::IntPoint& p, const model::Vec3& exact) { exact_.emplace(key(p), exact); }
   [[nodiscard]] model::Vec3 to_3d(const ClipperLib::IntPoint& p) const;
+  // Was `p` registered (an exact vertex), rather than placed on the plane from its integer coordinates?
+  [[nodiscard]] bool exact(const ClipperLib::IntPoint& p) const { return exact_.count(key(p)) > 0; }
   [[nodiscard]] const PlaneFrame& frame() const { return frame_; }
 
  private:

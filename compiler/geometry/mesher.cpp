@@ -83,6 +83,52 @@ Path clip_x(const Path& piece, cInt limit, bool keep_right) {
   return out;
 }
 
+// The region's boundary edges with their exact 3D end points. A dicing point on a boundary edge keeps the
+// coordinates that edge keeps constant, exactly, instead of taking them from its integer coordinates: those
+// are rounded to 1 um in the plane's frame, which for a slanted wall is not the model's frame, so a point
+// on the wall's vertical end edge came back up to a micrometre off it in x and y, and the crack between it
+// and the perpendicular wall let sight lines through a corner. Only those coordinates: moving a point onto
+// a slanted edge's line flipped slivers that the column cuts leave beside it (T-junction repair closes
+// slanted seams between coplanar faces instead).
+class BoundaryEdges {
+ public:
+  BoundaryEdges(const Paths& region, const PointMap& points) : points_(points) {
+    for (const auto& path : region)
+      for (std::size_t i = 0; i < path.size(); ++i) {
+        const IntPoint& a = path[i];
+        const IntPoint& b = path[(i + 1) % path.size()];
+        if (points.exact(a) && points.exact(b) && !(a == b))
+          edges_.push_back({a, b, points.to_3d(a), points.to_3d(b)});
+      }
+  }
+  [[nodiscard]] model::Vec3 place(const IntPoint& p) const {
+    if (points_.exact(p)) return points_.to_3d(p);
+    for (const Edge& e : edges_) {
+      const double dx = double(e.b.X - e.a.X), dy = double(e.b.Y - e.a.Y);
+      const double px = double(p.X - e.a.X), py = double(p.Y - e.a.Y);
+      const double length2 = dx * dx + dy * dy;
+      const double t = (px * dx + py * dy) / length2;
+      const double cross = px * dy - py * dx;  // distance from the edge's line times its length
+      // Within one unit: the rounding of a cut through the edge (trapezoid and column cuts round to 0.5).
+      if (t >= 0.0 && t <= 1.0 && cross * cross <= length2) {
+        model::Vec3 q = points_.to_3d(p);
+        for (int k = 0; k < 3; ++k)
+          if (e.A[k] == e.B[k]) q[k] = e.A[k];
+        return q;
+      }
+    }
+    return points_.to_3d(p);
+  }
+
+ private:
+  struct Edge {
+    IntPoint a, b;
+    model::Vec3 A, B;
+  };
+  const PointMap& points_;
+  std::vector<Edge> edges_;
+};
+
 }  // namespace
 
 model::Vec3 polygon_normal(const std::vector<model::Vec3>& vertices) {
@@ -153,13 +199,15 @@ PolygonMesh mesh_polygon(const model::Polygon& polygon, double cell_size) {
     if (rest.size() >= 3) fan_convex(rest, triangles);
   }
 
-  // Weld by exact integer position; map back to 3D on the plane (original vertices come back exactly).
+  // Weld by exact integer position; map back to 3D (original vertices come back exactly, dicing points on
+  // the boundary onto its edges, the rest onto the plane).
+  const BoundaryEdges boundary(region, points);
   std::map<std::pair<cInt, cInt>, std::uint32_t> index_of;
   for (const auto& triangle : triangles) {
     for (const auto& p : triangle) {
       const auto [it, added] =
           index_of.emplace(std::make_pair(p.X, p.Y), static_cast<std::uint32_t>(mesh.vertices.size()));
-      if (added) mesh.vertices.push_back(points.to_3d(p));
+      if (added) mesh.vertices.push_back(boundary.place(p));
       mesh.triangles.push_back(it->second);
     }
   }
