@@ -208,6 +208,8 @@ void add_verify_command(CLI::App& app, int& exit_code) {
   cmd->add_flag(
       "--anywhere{false}", args->options.free_space_only,
       "Viewpoints anywhere in a cell, also inside solids and outside the model (default: open space)");
+  cmd->add_flag("--pixel-centres{false}", args->options.jitter,
+                "Sight lines through pixel centres (default: a random point in each pixel)");
   cmd->add_flag("--no-portal-views{false}", args->options.portal_views,
                 "No viewpoints beside the portals (default: each portal's centre and corners, 1 mm inside "
                 "each cell it joins, at the dense resolution)");

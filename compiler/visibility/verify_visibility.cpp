@@ -1,6 +1,7 @@
 #include "compiler/visibility/verify_visibility.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <random>
@@ -15,6 +16,15 @@ namespace {
 constexpr double kInset = 1e-3;
 // Random draws per viewpoint to find one in open space before the cell is looked at from anywhere.
 constexpr int kFreeSpaceTries = 64;
+
+// A uniform number in (0, 1) from a 64-bit state (splitmix64), advancing it.
+double unit(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return (double(z >> 11) + 0.5) * 0x1.0p-53;
+}
 
 // Cube face f: forward, right, up (right x up = forward, the usual cube map frames).
 void face_frame(int f, model::Vec3& fwd, model::Vec3& right, model::Vec3& up) {
@@ -60,6 +70,10 @@ VisibilityJudge::VisibilityJudge(std::span<const model::VertexRecord> vertices,
 
 void VisibilityJudge::cube(const model::Vec3& eye, int res, CellViews* keep, std::vector<char>& seen) const {
   const std::size_t n = std::size_t(res) * std::size_t(res);
+  // Each eye's pixels get their own sample positions.
+  const std::uint64_t salt = options_.seed * 0x9E3779B97F4A7C15ull ^ std::bit_cast<std::uint64_t>(eye.x) ^
+                             std::rotl(std::bit_cast<std::uint64_t>(eye.y), 21) ^
+                             std::rotl(std::bit_cast<std::uint64_t>(eye.z), 42);
   for (int f = 0; f < 6; ++f) {
     model::Vec3 fwd, right, up;
     face_frame(f, fwd, right, up);
@@ -70,8 +84,13 @@ void VisibilityJudge::cube(const model::Vec3& eye, int res, CellViews* keep, std
       for (int x = 0; x < res; ++x) {
         Ray ray;
         ray.origin = eye;
-        ray.dir =
-            fwd + right * ((2.0 * (x + 0.5)) / res - 1.0) + up * ((2.0 * (double(y) + 0.5)) / res - 1.0);
+        double jx = 0.5, jy = 0.5;
+        if (options_.jitter) {
+          std::uint64_t h = salt ^ (std::uint64_t(f) << 58 | std::uint64_t(y) << 29 | std::uint64_t(x));
+          jx = unit(h);
+          jy = unit(h);
+        }
+        ray.dir = fwd + right * ((2.0 * (x + jx)) / res - 1.0) + up * ((2.0 * (double(y) + jy)) / res - 1.0);
         trace_through_glass(*caster_, ray, glass_, ids, options_.cull_back_faces);
         row_offsets[y].push_back(static_cast<std::uint32_t>(ids.size()));
       }
