@@ -22,8 +22,9 @@ using namespace walk::compiler;
 struct VerifyArgs {
   std::string bundle;
   VerifyOptions options;
-  std::string sweep;                                // CSV path; empty: verify the bundle's own PVS
-  double threshold = VisibilityConfig{}.threshold;  // the sweep's partition threshold: the scene's
+  std::string sweep;                                        // CSV path; empty: verify the bundle's own PVS
+  double threshold = VisibilityConfig{}.threshold;          // the sweep's partition threshold: the scene's
+  double min_cell_size = VisibilityConfig{}.min_cell_size;  // and its thinnest cell
   bool quiet = false;
 };
 
@@ -112,20 +113,25 @@ int verify(const VerifyArgs& args) {
       return 1;
     }
     std::fprintf(csv,
-                 "method,points,rays_per_point,seconds,missed_pixels,pixels,pvs_avg,pvs_worst,ratio,cells\n");
+                 "method,points,rays_per_point,seconds,missed_pixels,pixels,pvs_avg,pvs_worst,ratio,cells,"
+                 "proof_pairs\n");
     struct Setting {
       PvsMethod method;
-      int points, rays;
+      int points, rays, proof_pairs;
     };
     std::vector<Setting> settings;
-    for (const int points : {2, 8, 32, 128}) settings.push_back({PvsMethod::Sampled, points, 256});
-    settings.push_back({PvsMethod::Conservative, 0, 1});
-    settings.push_back({PvsMethod::Combined, 32, 256});
+    for (const int points : {2, 8, 32, 128}) settings.push_back({PvsMethod::Sampled, points, 256, 0});
+    settings.push_back({PvsMethod::Conservative, 0, 1, 0});
+    // The combined PVS by the proof's budget: what tightness costs in precompute time.
+    for (const int pairs : {0, 4, 16, 64, 256, 1024})
+      settings.push_back({PvsMethod::Combined, 32, 256, pairs});
     for (const auto& s : settings) {
       VisibilityConfig cfg;
       cfg.method = s.method;
       cfg.sample_points = s.points;
       cfg.rays_per_point = s.rays;
+      cfg.proof_pairs = s.proof_pairs;
+      cfg.min_cell_size = args.min_cell_size;
       cfg.threads = args.options.threads;
       cfg.threshold = args.threshold;
       cfg.cull_back_faces = args.options.cull_back_faces;
@@ -135,20 +141,22 @@ int verify(const VerifyArgs& args) {
       if (vr.partition.cells.size() != views.size()) {
         std::fprintf(stderr,
                      "walk verify: --sweep recomputed %zu cells where the bundle has %zu: pass the scene's "
-                     "[visibility] threshold with --threshold\n",
+                     "[visibility] threshold and min_cell_size with --threshold and --min-cell-size\n",
                      vr.partition.cells.size(), views.size());
         std::fclose(csv);
         return 1;
       }
       const VerifyReport r = judge(j, views, vr.pvs);
-      std::fprintf(csv, "%s,%d,%d,%.3f,%llu,%llu,%.1f,%llu,%.3f,%zu\n", pvs_method_name(s.method), s.points,
-                   s.rays, seconds, static_cast<unsigned long long>(r.missed),
+      std::fprintf(csv, "%s,%d,%d,%.3f,%llu,%llu,%.1f,%llu,%.3f,%zu,%d\n", pvs_method_name(s.method),
+                   s.points, s.rays, seconds, static_cast<unsigned long long>(r.missed),
                    static_cast<unsigned long long>(r.pixels), r.pvs_average,
-                   static_cast<unsigned long long>(r.pvs_worst), r.ratio, r.cells);
+                   static_cast<unsigned long long>(r.pvs_worst), r.ratio, r.cells, s.proof_pairs);
       std::printf(
-          "%-12s points %4d rays %4d: %7.2f s, missed %llu of %llu pixels, PVS avg %.1f, PVS/exact %.3f\n",
-          pvs_method_name(s.method), s.points, s.rays, seconds, static_cast<unsigned long long>(r.missed),
-          static_cast<unsigned long long>(r.pixels), r.pvs_average, r.ratio);
+          "%-12s points %4d rays %4d proof pairs %4d: %7.2f s, missed %llu of %llu pixels, PVS avg %.1f, "
+          "PVS/exact %.3f\n",
+          pvs_method_name(s.method), s.points, s.rays, s.proof_pairs, seconds,
+          static_cast<unsigned long long>(r.missed), static_cast<unsigned long long>(r.pixels), r.pvs_average,
+          r.ratio);
     }
     std::fclose(csv);
     return 0;
@@ -201,6 +209,9 @@ void add_verify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--sweep", args->sweep, "Sweep PVS methods and sample counts; write CSV here");
   cmd->add_option("--threshold", args->threshold,
                   "Partition threshold the sweep recomputes cells with: the scene's [visibility] threshold");
+  cmd->add_option("--min-cell-size", args->min_cell_size,
+                  "Thinnest cell the sweep recomputes cells with: the scene's [visibility] min_cell_size")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("-q,--quiet", args->quiet, "No per-cell lines");
   cmd->add_flag("--two-sided{false}", args->options.cull_back_faces,
                 "Judge as if the renderer drew both sides of every polygon (default: back faces culled, as "

@@ -255,7 +255,8 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("visibility");
   if (!t) return;
   t->only({"w_occlusion", "w_balance", "w_split", "threshold", "max_depth", "min_cell_size", "method",
-           "sample_points", "rays_per_point", "flow_budget", "ray_caster", "cull_back_faces", "occluders"});
+           "sample_points", "rays_per_point", "flow_budget", "ray_caster", "cull_back_faces", "occluders",
+           "proof_pairs"});
   auto& v = cfg.visibility;
   v.cull_back_faces = t->boolean("cull_back_faces").value_or(v.cull_back_faces);
   v.occluders = t->boolean("occluders").value_or(v.occluders);
@@ -280,6 +281,10 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
   if (const auto s = t->integer("rays_per_point")) {
     if (*s < 1 || *s > 1'000'000) t->fail("rays_per_point", "must be between 1 and 1000000");
     v.rays_per_point = static_cast<int>(*s);
+  }
+  if (const auto s = t->integer("proof_pairs")) {
+    if (*s < 0 || *s > 1'000'000) t->fail("proof_pairs", "must be between 0 (no proofs) and 1000000");
+    v.proof_pairs = static_cast<int>(*s);
   }
   if (const auto b = t->integer("flow_budget")) {
     if (*b < 1) t->fail("flow_budget", "must be at least 1");

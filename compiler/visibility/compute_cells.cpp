@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "compiler/visibility/draw_order.hpp"
+#include "compiler/visibility/parallel_for.hpp"
 #include "compiler/visibility/pvs_flow.hpp"
 #include "compiler/visibility/pvs_sampled.hpp"
 
@@ -24,6 +25,33 @@ std::vector<std::uint32_t> united(const std::vector<std::uint32_t>& a, const std
   return u;
 }
 
+// Leaves out of each cell's PVS the polygons proven hidden from the whole cell; those a sample saw are
+// visible and not tried.
+void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32_t>>& sampled,
+                  const RayCaster& caster, const VisibilityConfig& config) {
+  const HiddenProver prover(r.polygons, caster, config.cull_back_faces);
+  const ProofOptions options{config.proof_pairs, ProofOptions{}.max_depth, config.cull_back_faces};
+  std::vector<ProofStats> stats(r.pvs.size());
+  parallel_for(r.pvs.size(), config.threads, [&](std::size_t c) {
+    const Box& box = r.partition.cells[c];
+    std::vector<HiddenProver::Exit> exits;
+    for (const auto id : r.graph.cell_portals[c]) {
+      const Portal& portal = r.graph.portals[id];
+      if (!portal.open_from(static_cast<std::uint32_t>(c)) || portal.hull.size() < 3) continue;
+      model::Vec3 out{0.0};
+      out[portal.axis] = portal.back == c ? 1.0 : -1.0;
+      exits.push_back({portal.hull, out});
+    }
+    std::erase_if(r.pvs[c], [&](std::uint32_t p) {
+      if (std::binary_search(sampled[c].begin(), sampled[c].end(), p)) return false;
+      // Turned away from the whole cell: the back-face pass below drops it without a proof.
+      if (config.cull_back_faces && r.polygons[p].opaque && faces_away_from(r.polygons[p], box)) return false;
+      return prover.prove(box, exits, p, options, &stats[c]) == Verdict::Hidden;
+    });
+  });
+  for (const auto& s : stats) r.proofs.add(s);
+}
+
 }  // namespace
 
 std::string VisibilityResult::summary() const {
@@ -37,10 +65,12 @@ std::string VisibilityResult::summary() const {
       "{} cells (depth {}, {} candidate planes), {} portals, {} leaks, PVS avg {:.0f} worst {} of {} "
       "polygons; "
       "flow {} steps, {} fallbacks, {} occluded; {} sample rays; {} back faces dropped; "
-      "partition {:.2f} s portals {:.2f} s pvs {:.2f} s",
+      "proofs {} tried, {} hidden, {} seen, {} undecided in {} pairs; "
+      "partition {:.2f} s portals {:.2f} s pvs {:.2f} s (proofs {:.2f} s)",
       partition.cells.size(), partition.depth, partition.candidates, graph.portals.size(), graph.leaks.size(),
       avg, worst, polygons.size(), flow_steps, flow_fallbacks, flow_occluded, sample_rays, back_faces_dropped,
-      seconds_partition, seconds_portals, seconds_pvs);
+      proofs.tried, proofs.hidden, proofs.visible, proofs.undecided, proofs.pairs, seconds_partition,
+      seconds_portals, seconds_pvs, seconds_proofs);
 }
 
 VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertices,
@@ -61,11 +91,12 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
   t = std::chrono::steady_clock::now();
   const std::size_t n = r.partition.cells.size();
   std::vector<std::vector<std::uint32_t>> sampled, flow_polys;
+  std::unique_ptr<RayCaster> caster;
   if (config.method == PvsMethod::Sampled || config.method == PvsMethod::Combined) {
     std::vector<Triangle> triangles;
     for (std::uint32_t p = 0; p < r.polygons.size(); ++p)
       for (const auto& tri : r.polygons[p].triangles) triangles.push_back({tri[0], tri[1], tri[2], p});
-    const auto caster = make_ray_caster(config.ray_caster, triangles);
+    caster = make_ray_caster(config.ray_caster, triangles);
     sampled = sampled_pvs(
         r.partition, r.graph, r.polygons, *caster,
         {config.sample_points, config.rays_per_point, config.seed, config.threads, config.cull_back_faces},
@@ -94,6 +125,11 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
         r.pvs[c] = united(flow_polys[c], sampled[c]);
         break;
     }
+  }
+  if (config.method == PvsMethod::Combined && config.proof_pairs > 0 && n > 1) {
+    const auto tp = std::chrono::steady_clock::now();
+    prove_hidden(r, sampled, *caster, config);
+    r.seconds_proofs = since(tp);
   }
   if (config.cull_back_faces) {
     // The renderer culls back faces: an opaque polygon turned away from the whole cell is never drawn there.

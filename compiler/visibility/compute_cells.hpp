@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "compiler/partition/portals.hpp"
+#include "compiler/visibility/hidden_proof.hpp"
 #include "compiler/visibility/visibility_config.hpp"
 #include "model/bundle.hpp"
 
@@ -22,7 +23,8 @@ struct VisibilityResult {
   std::uint64_t flow_occluded = 0;  // polygon and portal tests an occluder inside a cell settled
   std::uint64_t sample_rays = 0;
   std::uint64_t back_faces_dropped = 0;  // (cell, polygon) pairs left out by cull_back_faces
-  double seconds_partition = 0.0, seconds_portals = 0.0, seconds_pvs = 0.0;
+  ProofStats proofs;                     // hidden-polygon proofs of the combined PVS
+  double seconds_partition = 0.0, seconds_portals = 0.0, seconds_pvs = 0.0, seconds_proofs = 0.0;
   [[nodiscard]] std::string summary() const;  // one line for the stage record and logs
 };
 

@@ -39,6 +39,9 @@ struct VisibilityConfig {
   // The flow also leaves out what lies wholly behind one convex wall inside a cell, seen from the portal
   // it came through (visibility/occluders.hpp): walls the axial cells cannot follow, such as diagonal ones.
   bool occluders = true;
+  // Combined PVS: per polygon the flow lets through and no sample saw, (viewer piece, target piece) pairs
+  // the hidden-polygon proof may try (hidden_proof.hpp) before the polygon is kept; 0: no proof.
+  int proof_pairs = 256;
   std::string ray_caster = "axial";
   unsigned threads = 0;  // 0: hardware concurrency
   std::uint64_t seed = 1;

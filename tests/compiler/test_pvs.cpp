@@ -189,9 +189,16 @@ TEST(Pvs, AWallInsideACellHidesWhatLiesBehindIt) {
   const auto first_box = static_cast<std::uint32_t>(m.b.polygons.size());
   m.room({6.9, 1.9, 0.2}, {7.1, 2.1, 0.4});
   const auto end_box = static_cast<std::uint32_t>(m.b.polygons.size());
-  for (const bool occluders : {true, false}) {
+  // The single-occluder test inside the flow settles it, and so does the hidden-polygon proof on its own;
+  // with neither, the flow keeps the box.
+  struct Setting {
+    bool occluders;
+    int proof_pairs;
+  };
+  for (const auto [occluders, proof_pairs] : {Setting{true, 0}, Setting{false, 0}, Setting{false, 256}}) {
     VisibilityConfig config = test_config(PvsMethod::Combined, true);
     config.occluders = occluders;
+    config.proof_pairs = proof_pairs;
     const VisibilityResult vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
     const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(true));
     std::uint64_t missed = 0;
@@ -199,15 +206,18 @@ TEST(Pvs, AWallInsideACellHidesWhatLiesBehindIt) {
       const Box& box = vis.partition.cells[cell];
       missed += judge.missed(judge.views(box, cell, portal_viewpoints(vis.graph, box, cell)), vis.pvs[cell]);
     }
-    EXPECT_EQ(missed, 0u) << "occluders " << occluders;
+    EXPECT_EQ(missed, 0u) << "occluders " << occluders << " proofs " << proof_pairs;
     const std::uint32_t near_room = locate(vis.partition.nodes, {1, 2, 1});
     std::size_t box_faces = 0;
     for (std::uint32_t p = first_box; p < end_box; ++p) box_faces += has(vis.pvs[near_room], p) ? 1 : 0;
     if (occluders) {
       EXPECT_EQ(box_faces, 0u) << "the box behind the wall, from the room with the door";
       EXPECT_GT(vis.flow_occluded, 0u);
+    } else if (proof_pairs > 0) {
+      EXPECT_EQ(box_faces, 0u) << "the proof alone hides the box";
+      EXPECT_GT(vis.proofs.hidden, 0u);
     } else {
-      EXPECT_GT(box_faces, 0u) << "without occluders the flow keeps it";
+      EXPECT_GT(box_faces, 0u) << "without occluders or proofs the flow keeps it";
     }
   }
 }

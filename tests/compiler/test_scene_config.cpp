@@ -85,6 +85,20 @@ TEST_F(SceneConfigTest, WeldIsMetresAndBounded) {
   }
 }
 
+TEST_F(SceneConfigTest, ProofPairsAreACountOrNone) {
+  write("[model]\nfile = \"a.dxf\"\n[visibility]\nproof_pairs = 16\n");
+  EXPECT_EQ(load_scene_config(path_).visibility.proof_pairs, 16);
+  write("[model]\nfile = \"a.dxf\"\n[visibility]\nproof_pairs = 0\n");
+  EXPECT_EQ(load_scene_config(path_).visibility.proof_pairs, 0) << "no proofs";
+  write("[model]\nfile = \"a.dxf\"\n");
+  EXPECT_EQ(load_scene_config(path_).visibility.proof_pairs, VisibilityConfig{}.proof_pairs);
+  for (const char* bad : {"-1", "2000000", "1.5"}) {
+    const std::string e =
+        error_of(std::string("[model]\nfile = \"a.dxf\"\n[visibility]\nproof_pairs = ") + bad + "\n");
+    EXPECT_NE(e.find("visibility.proof_pairs"), std::string::npos) << bad << ": " << e;
+  }
+}
+
 TEST_F(SceneConfigTest, ShippedScenesLoad) {
   for (const char* name : {"house.toml", "medium-office.toml"}) {
     const SceneConfig c = load_scene_config(std::string(WALK_SOURCE_DIR) + "/config/scenes/" + name);

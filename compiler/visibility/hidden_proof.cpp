@@ -1,0 +1,274 @@
+#include "compiler/visibility/hidden_proof.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "compiler/visibility/trace_through_glass.hpp"
+
+namespace walk::compiler {
+namespace {
+
+// A polygon fills its hull when their areas agree to this fraction (a notch or a hole makes the hull
+// larger by its area).
+constexpr double kConvexArea = 1e-6;
+
+double winding_area(const Winding& w) {
+  model::Vec3 sum{0.0};
+  for (std::size_t i = 0; i < w.size(); ++i) sum += glm::cross(w[i], w[(i + 1) % w.size()]);
+  return 0.5 * glm::length(sum);
+}
+
+Box bounds_of(const Winding& w) {
+  Box b{w.front(), w.front()};
+  for (const auto& p : w) {
+    b.min = glm::min(b.min, p);
+    b.max = glm::max(b.max, p);
+  }
+  return b;
+}
+
+// The viewer region is the cell this far (metres) inside its faces: walls, floors and ceilings lie in the
+// cells' faces, and an eye in a wall's plane sees past the wall's edge-on polygons. The renderer's near
+// plane (5 cm) already clips a wall the eye comes this close to, and walking keeps a body radius off walls.
+constexpr double kViewerInset = 1e-4;
+
+Box inset(Box b) {
+  for (int a = 0; a < 3; ++a) {
+    const double m = std::min(kViewerInset, 0.25 * (b.max[a] - b.min[a]));
+    b.min[a] += m;
+    b.max[a] -= m;
+  }
+  return b;
+}
+
+int longest_axis(const model::Vec3& size) {
+  return size.x >= size.y ? (size.x >= size.z ? 0 : 2) : (size.y >= size.z ? 1 : 2);
+}
+
+}  // namespace
+
+HiddenProver::HiddenProver(const std::vector<VisPolygon>& polygons, const RayCaster& caster,
+                           bool cull_back_faces)
+    : polygons_(polygons),
+      caster_(caster),
+      cull_back_faces_(cull_back_faces),
+      planes_(polygons, cull_back_faces),
+      glass_(polygons.size()),
+      convex_(polygons.size()),
+      planar_(polygons.size()) {
+  for (std::size_t p = 0; p < polygons.size(); ++p) {
+    glass_[p] = polygons[p].glass;
+    double area = 0.0;
+    for (const auto& t : polygons[p].triangles)
+      area += 0.5 * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
+    const double hull = polygons[p].hull.size() >= 3 ? winding_area(polygons[p].hull) : 0.0;
+    convex_[p] = std::abs(hull - area) <= kConvexArea * hull;
+    // In its plane, and no triangle turned the other way (a sliver the dicing flipped would be drawn from
+    // the side the polygon's normal turns away from).
+    bool planar = polygons[p].hull.size() >= 3 && glm::length(polygons[p].normal) > 0.0;
+    for (const auto& t : polygons[p].triangles) {
+      for (const auto& v : t)
+        planar =
+            planar && std::abs(glm::dot(polygons[p].normal, v - polygons[p].hull.front())) <= kShaftSlack;
+      planar = planar && glm::dot(glm::cross(t[1] - t[0], t[2] - t[0]), polygons[p].normal) >= 0.0;
+    }
+    planar_[p] = planar;
+  }
+}
+
+HiddenProver::Sight HiddenProver::sight(const model::Vec3& from, const model::Vec3& to,
+                                        std::uint32_t target) const {
+  Sight s;
+  Ray ray;
+  ray.origin = from;
+  ray.dir = to - from;
+  ray.tmin = 0.0;
+  // Just past the target point, which lies in the target's plane: its hit rounds either side of t = 1.
+  ray.tmax = 1.0 + 1e-9;
+  for (int layer = 0; layer <= kMaxGlassLayers + 4; ++layer) {
+    const RayHit h = caster_.closest(ray);
+    if (!h.hit()) return s;
+    const bool drawn = !cull_back_faces_ || h.front || glass_[h.polygon];
+    if (h.polygon == target && drawn) {
+      s.reaches = s.count == 0 && !s.opaque_unnamed;  // unless something drawn stood in front
+      return s;
+    }
+    if (drawn && !glass_[h.polygon]) {
+      // Blocked: go on only to name further planes that may hide the target from the whole pair.
+      const int plane = planes_.plane_of(h.polygon);
+      if (plane < 0) {
+        s.opaque_unnamed = true;
+      } else if (std::find(s.blockers, s.blockers + s.count, plane) == s.blockers + s.count) {
+        s.blockers[s.count++] = plane;
+        if (s.count == 4) return s;
+      }
+    }
+    ray.tmin = h.t + tie_tolerance(ray.dir);
+  }
+  return s;
+}
+
+bool HiddenProver::faces_away(const Winding& source, std::uint32_t target) const {
+  const VisPolygon& tp = polygons_[target];
+  if (!cull_back_faces_ || !tp.opaque || !planar_[target]) return false;
+  // planar_ holds only polygons whose every triangle faces along the polygon's normal: one plane decides.
+  const Plane plane{tp.normal, -glm::dot(tp.normal, tp.hull.front())};
+  for (const auto& s : source)
+    if (plane.distance(s) > kShaftSlack) return false;
+  return true;
+}
+
+bool HiddenProver::piece_meets_polygon(const Winding& piece, std::uint32_t target) const {
+  if (convex_[target]) return true;
+  const Box b = bounds_of(piece);
+  for (const auto& t : polygons_[target].triangles) {
+    const Box tb{glm::min(t[0], glm::min(t[1], t[2])), glm::max(t[0], glm::max(t[1], t[2]))};
+    if (b.overlaps(tb, kShaftSlack)) return true;
+  }
+  return false;
+}
+
+// One proof's budget and outcome, shared by its branches.
+struct HiddenProver::Search {
+  std::uint32_t target;
+  const ProofOptions& options;
+  ProofStats stats;
+  bool visible = false;  // a sight line reached the target: stop
+  bool spent = false;    // the budget ran out: stop
+  [[nodiscard]] bool stopped() const { return visible || spent; }
+};
+
+namespace {
+
+Winding box_corners(const Box& b) {
+  Winding w(8);
+  for (int c = 0; c < 8; ++c)
+    for (int a = 0; a < 3; ++a) w[c][a] = (c >> a) & 1 ? b.max[a] : b.min[a];
+  return w;
+}
+
+model::Vec3 centre_of(const Winding& w) {
+  model::Vec3 c{0.0};
+  for (const auto& v : w) c += v;
+  return c / double(w.size());
+}
+
+}  // namespace
+
+bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is_target, bool top, int depth,
+                          Search& search) const {
+  if (search.stopped()) return false;
+  if (dest.size() < 3 || source.points.empty()) return true;  // nothing (or no area) to see
+  if (dest_is_target &&
+      (!piece_meets_polygon(dest, search.target) || faces_away(source.points, search.target)))
+    return true;
+  if (++search.stats.pairs > static_cast<std::uint64_t>(search.options.max_pairs)) {
+    search.spent = true;
+    return false;
+  }
+  if (!dest_is_target || !top) ++search.stats.windows;
+  const Box sb = bounds_of(source.points);
+  const Box db = bounds_of(dest);
+  const Sight s = sight(0.5 * (sb.min + sb.max), centre_of(dest), dest_is_target ? search.target : kNoTarget);
+  if (s.reaches && top) {
+    search.visible = true;
+    return false;
+  }
+  for (int b = 0; b < s.count; ++b)
+    if (planes_.blocks(s.blockers[b], source.points, dest)) return true;
+  if (depth >= search.options.max_depth) return false;
+
+  // Through the open parts of the first plane the sight line met, when they are a small part of its section.
+  if (s.count > 0) {
+    const Shaft shaft = planes_.shaft(s.blockers[0], source.points, dest, true);
+    if (shaft.applies && !shaft.leaks.empty() &&
+        shaft.leak_area <= search.options.window_fraction * shaft.section_area) {
+      bool all = true;
+      for (const Winding& window : shaft.leaks) {
+        if (hidden(source, window, false, false, depth + 1, search)) continue;
+        if (search.stopped()) return false;
+        if (hidden({window, false}, dest, dest_is_target, false, depth + 1, search)) continue;
+        all = false;
+        break;
+      }
+      if (all) return true;
+      if (search.stopped()) return false;
+    }
+  }
+
+  // Split whichever piece is larger: a wide source sees round an occluder's edge, a long target reaches
+  // past it.
+  const model::Vec3 ss = sb.size(), ds = db.size();
+  const int sa = longest_axis(ss), da = longest_axis(ds);
+  if (ss[sa] >= ds[da]) {
+    const double mid = 0.5 * (sb.min[sa] + sb.max[sa]);
+    Piece a, b;
+    if (source.box) {
+      Box lo = sb, hi = sb;
+      lo.max[sa] = hi.min[sa] = mid;
+      a = {box_corners(lo), true};
+      b = {box_corners(hi), true};
+    } else {
+      const Plane cut = axial_plane(sa, mid, 1.0);
+      a = {clip_front(source.points, cut), false};
+      b = {clip_front(source.points, cut.flipped()), false};
+    }
+    return hidden(a, dest, dest_is_target, top, depth + 1, search) &&
+           hidden(b, dest, dest_is_target, top, depth + 1, search);
+  }
+  const Plane cut = axial_plane(da, 0.5 * (db.min[da] + db.max[da]), 1.0);
+  return hidden(source, clip_front(dest, cut), dest_is_target, top, depth + 1, search) &&
+         hidden(source, clip_front(dest, cut.flipped()), dest_is_target, top, depth + 1, search);
+}
+
+Verdict HiddenProver::prove(const Box& cell, std::span<const Exit> exits, std::uint32_t target,
+                            const ProofOptions& options, ProofStats* stats) const {
+  Search search{target, options, {}};
+  search.stats.tried = 1;
+  const auto finish = [&](Verdict v) {
+    (v == Verdict::Hidden    ? search.stats.hidden
+     : v == Verdict::Visible ? search.stats.visible
+                             : search.stats.undecided) = 1;
+    if (stats) stats->add(search.stats);
+    return v;
+  };
+  const VisPolygon& tp = polygons_[target];
+  if (tp.hull.size() < 3 || options.max_pairs <= 0) return finish(Verdict::Undecided);
+  bool all = true;
+  if (tp.box.overlaps(cell, kShaftSlack)) {
+    // Touching the cell: sight lines need not pass a portal.
+    all = hidden({box_corners(inset(cell)), true}, tp.hull, true, true, 0, search);
+  } else {
+    for (const Exit& e : exits) {
+      // Only what lies beyond the portal is seen through it.
+      const Plane beyond{e.out, -glm::dot(e.out, e.hull.front())};
+      const Winding part = clip_front(tp.hull, beyond);
+      if (part.size() < 3 || e.hull.size() < 3) continue;
+      if (!hidden({e.hull, false}, part, true, true, 0, search)) {
+        all = false;
+        break;
+      }
+    }
+  }
+  if (search.visible) return finish(Verdict::Visible);
+  return finish(all ? Verdict::Hidden : Verdict::Undecided);
+}
+
+Verdict HiddenProver::prove_from_box(const Box& viewer, std::uint32_t target, const ProofOptions& options,
+                                     ProofStats* stats) const {
+  Search search{target, options, {}};
+  search.stats.tried = 1;
+  const VisPolygon& tp = polygons_[target];
+  const bool all =
+      tp.hull.size() >= 3 && hidden({box_corners(inset(viewer)), true}, tp.hull, true, true, 0, search);
+  const Verdict v = search.visible ? Verdict::Visible : all ? Verdict::Hidden : Verdict::Undecided;
+  (v == Verdict::Hidden    ? search.stats.hidden
+   : v == Verdict::Visible ? search.stats.visible
+                           : search.stats.undecided) = 1;
+  if (stats) stats->add(search.stats);
+  return v;
+}
+
+}  // namespace walk::compiler
