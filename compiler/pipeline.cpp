@@ -16,6 +16,7 @@
 #include "compiler/geometry/coarse_mesh.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/openings.hpp"
+#include "compiler/geometry/seal_gaps.hpp"
 #include "compiler/geometry/t_junctions.hpp"
 #include "compiler/import/import_model.hpp"
 #include "compiler/lighting/direct_light.hpp"
@@ -211,6 +212,17 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       t.done(before, model.polygons.size(),
              fmt::format("hosts cut {} openings {} glass {} unmatched {}", s.hosts_cut, s.openings_cut,
                          s.glass_cut, s.unmatched));
+    }
+  }
+  {
+    // After the openings, whose cut-outs are holes the seal must keep (they are far wider than a slit).
+    StageTimer t(stages, "seal");
+    if (!(config.seal_metres > 0.0)) {
+      t.skipped("scene seals no slits ([model] seal)");
+    } else {
+      const std::size_t before = model.polygons.size();
+      const SealStats s = seal_gaps(model, config.seal_metres);
+      t.done(before, model.polygons.size(), fmt::format("width {} m: {}", config.seal_metres, s.summary()));
     }
   }
   {

@@ -45,11 +45,16 @@ constexpr const char* kFormats[] = {"dxf", "plan", "map", "obj", "gltf", "glb",
 void read_model(const TomlTable& root, SceneConfig& cfg) {
   const auto model = root.table("model");
   if (!model) root.fail("model", "missing [model] table with at least `file = \"building.dxf\"`");
-  model->only({"file", "format", "units", "scale", "up", "faces", "weld"});
+  model->only({"file", "format", "units", "scale", "up", "faces", "weld", "seal"});
   if (model->has("weld")) {
     cfg.weld_metres = positive(*model, "weld", 0.0);
     if (cfg.weld_metres > 0.01)
       model->fail("weld", "at most 0.01 (metres): a weld that large merges real corners, not printing noise");
+  }
+  if (model->has("seal")) {
+    cfg.seal_metres = positive(*model, "seal", 0.0);
+    if (cfg.seal_metres > 0.1)
+      model->fail("seal", "at most 0.1 (metres): wider gaps are real openings, not modelling slits");
   }
   const auto file = model->string("file");
   if (!file) model->fail("file", "missing: name the building model to import");

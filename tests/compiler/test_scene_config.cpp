@@ -85,6 +85,17 @@ TEST_F(SceneConfigTest, WeldIsMetresAndBounded) {
   }
 }
 
+TEST_F(SceneConfigTest, SealIsMetresAndBounded) {
+  write("[model]\nfile = \"a.dxf\"\nseal = 0.03\n");
+  EXPECT_DOUBLE_EQ(load_scene_config(path_).seal_metres, 0.03);
+  write("[model]\nfile = \"a.dxf\"\n");
+  EXPECT_EQ(load_scene_config(path_).seal_metres, 0.0) << "default: no sealing";
+  for (const char* bad : {"0", "-0.01", "0.5"}) {
+    const std::string e = error_of(std::string("[model]\nfile = \"a.dxf\"\nseal = ") + bad + "\n");
+    EXPECT_NE(e.find("model.seal"), std::string::npos) << bad << ": " << e;
+  }
+}
+
 TEST_F(SceneConfigTest, ProofPairsAreACountOrNone) {
   write("[model]\nfile = \"a.dxf\"\n[visibility]\nproof_pairs = 16\n");
   EXPECT_EQ(load_scene_config(path_).visibility.proof_pairs, 16);
