@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "compiler/scene/scene_config.hpp"
 #include "model/error.hpp"
@@ -74,25 +76,27 @@ TEST_F(SceneConfigTest, ModelPathIsResolvedAgainstTheConfigFolder) {
   EXPECT_DOUBLE_EQ(c.metres_per_unit, 0.0254);
 }
 
-TEST_F(SceneConfigTest, WeldIsMetresAndBounded) {
-  write("[model]\nfile = \"a.dxf\"\nweld = 2e-5\n");
-  EXPECT_DOUBLE_EQ(load_scene_config(path_).weld_metres, 2e-5);
-  write("[model]\nfile = \"a.dxf\"\n");
-  EXPECT_EQ(load_scene_config(path_).weld_metres, 0.0) << "default: relative to the model's size";
-  for (const char* bad : {"0", "-1e-5", "0.5"}) {
-    const std::string e = error_of(std::string("[model]\nfile = \"a.dxf\"\nweld = ") + bad + "\n");
-    EXPECT_NE(e.find("model.weld"), std::string::npos) << bad << ": " << e;
-  }
-}
+// A [model] length in metres: `good` is read as it is, leaving it out gives 0, and each of `bad` is refused
+// with an error naming the key.
+struct MetresKey {
+  const char* key;
+  double SceneConfig::*field;
+  double good;
+  std::vector<const char*> bad;
+};
 
-TEST_F(SceneConfigTest, SealIsMetresAndBounded) {
-  write("[model]\nfile = \"a.dxf\"\nseal = 0.03\n");
-  EXPECT_DOUBLE_EQ(load_scene_config(path_).seal_metres, 0.03);
-  write("[model]\nfile = \"a.dxf\"\n");
-  EXPECT_EQ(load_scene_config(path_).seal_metres, 0.0) << "default: no sealing";
-  for (const char* bad : {"0", "-0.01", "0.5"}) {
-    const std::string e = error_of(std::string("[model]\nfile = \"a.dxf\"\nseal = ") + bad + "\n");
-    EXPECT_NE(e.find("model.seal"), std::string::npos) << bad << ": " << e;
+TEST_F(SceneConfigTest, WeldAndSealAreMetresAndBounded) {
+  // weld 0: relative to the model's size; seal 0: no sealing.
+  for (const MetresKey& k : {MetresKey{"weld", &SceneConfig::weld_metres, 2e-5, {"0", "-1e-5", "0.5"}},
+                             MetresKey{"seal", &SceneConfig::seal_metres, 0.03, {"0", "-0.01", "0.5"}}}) {
+    write(std::string("[model]\nfile = \"a.dxf\"\n") + k.key + " = " + std::to_string(k.good) + "\n");
+    EXPECT_DOUBLE_EQ(load_scene_config(path_).*k.field, k.good) << k.key;
+    write("[model]\nfile = \"a.dxf\"\n");
+    EXPECT_EQ(load_scene_config(path_).*k.field, 0.0) << k.key;
+    for (const char* bad : k.bad) {
+      const std::string e = error_of(std::string("[model]\nfile = \"a.dxf\"\n") + k.key + " = " + bad + "\n");
+      EXPECT_NE(e.find(std::string("model.") + k.key), std::string::npos) << bad << ": " << e;
+    }
   }
 }
 
