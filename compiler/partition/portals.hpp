@@ -31,6 +31,10 @@ struct Portal {
   bool backward = true;
   // Do sight lines pass from `cell` (one of its two) out through it?
   [[nodiscard]] bool open_from(std::uint32_t cell) const { return cell == back ? forward : backward; }
+  // Its plane with the normal pointing out of `cell` (one of its two).
+  [[nodiscard]] Plane out_of(std::uint32_t cell) const {
+    return axial_plane(axis, coord, cell == back ? 1.0 : -1.0);
+  }
 };
 
 struct Leak {

@@ -38,14 +38,10 @@ void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32
     for (const auto id : r.graph.cell_portals[c]) {
       const Portal& portal = r.graph.portals[id];
       if (!portal.open_from(static_cast<std::uint32_t>(c)) || portal.hull.size() < 3) continue;
-      model::Vec3 out{0.0};
-      out[portal.axis] = portal.back == c ? 1.0 : -1.0;
-      exits.push_back({portal.hull, out});
+      exits.push_back({portal.hull, portal.out_of(static_cast<std::uint32_t>(c))});
     }
     std::erase_if(r.pvs[c], [&](std::uint32_t p) {
       if (std::binary_search(sampled[c].begin(), sampled[c].end(), p)) return false;
-      // Turned away from the whole cell: the back-face pass below drops it without a proof.
-      if (config.cull_back_faces && r.polygons[p].opaque && faces_away_from(r.polygons[p], box)) return false;
       return prover.prove(box, exits, p, options, &stats[c]) == Verdict::Hidden;
     });
   });
@@ -126,11 +122,6 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
         break;
     }
   }
-  if (config.method == PvsMethod::Combined && config.proof_pairs > 0 && n > 1) {
-    const auto tp = std::chrono::steady_clock::now();
-    prove_hidden(r, sampled, *caster, config);
-    r.seconds_proofs = since(tp);
-  }
   if (config.cull_back_faces) {
     // The renderer culls back faces: an opaque polygon turned away from the whole cell is never drawn there.
     for (std::size_t c = 0; c < n; ++c) {
@@ -141,6 +132,12 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
         return away;
       });
     }
+  }
+  // After the back-face pass: a polygon turned away from the whole cell needs no proof.
+  if (config.method == PvsMethod::Combined && config.proof_pairs > 0 && n > 1) {
+    const auto tp = std::chrono::steady_clock::now();
+    prove_hidden(r, sampled, *caster, config);
+    r.seconds_proofs = since(tp);
   }
   r.seconds_pvs = since(t);
   return r;

@@ -243,8 +243,7 @@ Verdict HiddenProver::prove(const Box& cell, std::span<const Exit> exits, std::u
   } else {
     for (const Exit& e : exits) {
       // Only what lies beyond the portal is seen through it.
-      const Plane beyond{e.out, -glm::dot(e.out, e.hull.front())};
-      const Winding part = clip_front(tp.hull, beyond);
+      const Winding part = clip_front(tp.hull, e.out);
       if (part.size() < 3 || e.hull.size() < 3) continue;
       if (!hidden({e.hull, false}, part, true, true, 0, search)) {
         all = false;

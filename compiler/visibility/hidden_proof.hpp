@@ -52,10 +52,10 @@ class HiddenProver {
   // `caster` holds the polygons' triangles, each carrying its polygon's index.
   HiddenProver(const std::vector<VisPolygon>& polygons, const RayCaster& caster, bool cull_back_faces);
 
-  // A cell's way out: a portal's convex hull and the normal pointing out of the cell.
+  // A cell's way out: a portal's convex hull and its plane facing out of the cell (Portal::out_of).
   struct Exit {
     Winding hull;
-    model::Vec3 out;
+    Plane out;
   };
   // Is `target` hidden from every point of `cell`, whose sight lines leave it only through `exits`?
   [[nodiscard]] Verdict prove(const Box& cell, std::span<const Exit> exits, std::uint32_t target,

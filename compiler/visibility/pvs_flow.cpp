@@ -51,11 +51,7 @@ struct FlowGraph {
       for (const auto id : g.cell_portals[c]) {
         const Portal& p = g.portals[id];
         if (!p.open_from(c)) continue;  // one-way, the other way
-        out[c].push_back({&p.hull,
-                          axial_plane(p.axis, p.coord, p.back == c ? 1.0 : -1.0),
-                          c,
-                          p.back == c ? p.front : p.back,
-                          {}});
+        out[c].push_back({&p.hull, p.out_of(c), c, p.back == c ? p.front : p.back, {}});
       }
     const std::size_t words = (part.cells.size() + 63) / 64;
     for (auto& cell_out : out)

@@ -70,7 +70,7 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
       if (i % 2 == 1 && !portals.empty()) {
         const Portal& p = graph.portals[portals[rng() % portals.size()]];
         origin = random_point_in(p.hull, rng);
-        out_normal[p.axis] = p.back == c ? 1.0 : -1.0;
+        out_normal = p.out_of(static_cast<std::uint32_t>(c)).n;
       } else {
         for (int a = 0; a < 3; ++a) origin[a] = box.min[a] + u(rng) * (box.max[a] - box.min[a]);
       }

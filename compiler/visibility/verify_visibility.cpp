@@ -124,7 +124,7 @@ std::vector<model::Vec3> portal_viewpoints(const PortalGraph& graph, const Box& 
       points.push_back(v + (centre - v) * 0.1);
     }
     // Into the cell, off the face the portal lies on, and within the inset box like every other viewpoint.
-    const double into = portal.back == cell_index ? -kInset : kInset;
+    const double into = -kInset * portal.out_of(cell_index).n[portal.axis];
     const Box in = inset(cell);
     for (auto p : points) {
       p[portal.axis] = portal.coord + into;
