@@ -17,6 +17,19 @@ double area_m2(const ClipperLib::Path& path) {
   return ClipperLib::Area(path) / (kClipperScale * kClipperScale);
 }
 
+ClipperLib::Paths offset_region(const ClipperLib::Paths& paths, double metres) {
+  ClipperLib::ClipperOffset o;
+  o.AddPaths(paths, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
+  ClipperLib::Paths out;
+  o.Execute(out, metres * kClipperScale);
+  return out;
+}
+
+ClipperLib::Paths close_region(const ClipperLib::Paths& paths, double radius) {
+  if (paths.empty()) return paths;
+  return offset_region(offset_region(paths, radius), -radius);
+}
+
 ClipperLib::Path PointMap::to_path(const std::vector<model::Vec3>& loop) {
   ClipperLib::Path path;
   path.reserve(loop.size());

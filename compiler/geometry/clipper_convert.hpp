@@ -21,6 +21,12 @@ inline constexpr double kClipperScale = 1e6;
 // Signed area of a Clipper path in square metres (positive when counter-clockwise).
 [[nodiscard]] double area_m2(const ClipperLib::Path& path);
 
+// `paths` grown by `metres` (shrunk when negative), mitred corners.
+[[nodiscard]] ClipperLib::Paths offset_region(const ClipperLib::Paths& paths, double metres);
+// The closing of `paths` by `radius` metres (grown, then shrunk back): gaps and notches narrower than twice
+// the radius are filled; mitred corners come back no larger.
+[[nodiscard]] ClipperLib::Paths close_region(const ClipperLib::Paths& paths, double radius);
+
 // Maps integer points back to 3D. Points registered with `remember` come back exactly as given (so vertices
 // that Clipper passes through untouched keep full double precision); others are placed on the plane.
 class PointMap {

@@ -14,9 +14,6 @@
 namespace walk::compiler {
 namespace {
 
-// A normal's sign comes from its first component at least this large (a unit vector has one above 0.57);
-// one that far from zero keeps its sign under rounding, so faces of one plane get one key.
-constexpr double kClearComponent = 0.1;
 // Grouping key resolution for unit normals (faces of one plane agree to about 1e-6).
 constexpr double kNormalKey = 1e5;
 // What the closing leaves besides real slits: slivers a rounding (1 um) wide along every boundary. A slit
@@ -41,14 +38,6 @@ double perimeter(const ClipperLib::Path& path) {
     p += std::hypot(double(b.X - a.X), double(b.Y - a.Y));
   }
   return p / kClipperScale;
-}
-
-ClipperLib::Paths offset(const ClipperLib::Paths& paths, double metres) {
-  ClipperLib::ClipperOffset o;
-  o.AddPaths(paths, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
-  ClipperLib::Paths out;
-  o.Execute(out, metres * kClipperScale);
-  return out;
 }
 
 }  // namespace
@@ -116,7 +105,7 @@ SealStats seal_gaps(model::Model& model, double width) {
     }
     ClipperLib::Paths united;
     unite.Execute(ClipperLib::ctUnion, united, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-    const ClipperLib::Paths closed = offset(offset(united, 0.5 * width), -0.5 * width);
+    const ClipperLib::Paths closed = close_region(united, 0.5 * width);
     ClipperLib::Clipper diff;
     diff.AddPaths(closed, ClipperLib::ptSubject, true);
     diff.AddPaths(united, ClipperLib::ptClip, true);
@@ -146,7 +135,7 @@ SealStats seal_gaps(model::Model& model, double width) {
       ClipperLib::Paths slit{node->Contour};
       for (const auto* h : node->Childs) slit.push_back(h->Contour);
       ClipperLib::ClipperOffset grow;
-      grow.AddPaths(offset(slit, -kSliver), ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
+      grow.AddPaths(offset_region(slit, -kSliver), ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
       ClipperLib::PolyTree fill;
       grow.Execute(fill, (kSliver + kSealOverlap) * kClipperScale);
       for (const ClipperLib::PolyNode* f = fill.GetFirst(); f; f = f->GetNext()) {
