@@ -10,16 +10,6 @@
 namespace walk::compiler {
 namespace {
 
-// A polygon fills its hull when their areas agree to this fraction (a notch or a hole makes the hull
-// larger by its area).
-constexpr double kConvexArea = 1e-6;
-
-double winding_area(const Winding& w) {
-  model::Vec3 sum{0.0};
-  for (std::size_t i = 0; i < w.size(); ++i) sum += glm::cross(w[i], w[(i + 1) % w.size()]);
-  return 0.5 * glm::length(sum);
-}
-
 Box bounds_of(const Winding& w) {
   Box b{w.front(), w.front()};
   for (const auto& p : w) {
@@ -60,11 +50,7 @@ HiddenProver::HiddenProver(const std::vector<VisPolygon>& polygons, const RayCas
       planar_(polygons.size()) {
   for (std::size_t p = 0; p < polygons.size(); ++p) {
     glass_[p] = polygons[p].glass;
-    double area = 0.0;
-    for (const auto& t : polygons[p].triangles)
-      area += 0.5 * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
-    const double hull = polygons[p].hull.size() >= 3 ? winding_area(polygons[p].hull) : 0.0;
-    convex_[p] = std::abs(hull - area) <= kConvexArea * hull;
+    convex_[p] = fills_hull(polygons[p]);
     // In its plane, and no triangle turned the other way (a sliver the dicing flipped would be drawn from
     // the side the polygon's normal turns away from).
     bool planar = polygons[p].hull.size() >= 3 && glm::length(polygons[p].normal) > 0.0;
@@ -138,6 +124,14 @@ struct HiddenProver::Search {
   bool visible = false;  // a sight line reached the target: stop
   bool spent = false;    // the budget ran out: stop
   [[nodiscard]] bool stopped() const { return visible || spent; }
+  // The verdict once the branches are done (`all`: every one proven hidden), counted into `out`.
+  Verdict conclude(bool all, ProofStats* out) {
+    const Verdict v = visible ? Verdict::Visible : all ? Verdict::Hidden : Verdict::Undecided;
+    stats.tried = 1;
+    (v == Verdict::Hidden ? stats.hidden : v == Verdict::Visible ? stats.visible : stats.undecided) = 1;
+    if (out) out->add(stats);
+    return v;
+  }
 };
 
 namespace {
@@ -225,49 +219,27 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
 
 Verdict HiddenProver::prove(const Box& cell, std::span<const Exit> exits, std::uint32_t target,
                             const ProofOptions& options, ProofStats* stats) const {
-  Search search{target, options, {}};
-  search.stats.tried = 1;
-  const auto finish = [&](Verdict v) {
-    (v == Verdict::Hidden    ? search.stats.hidden
-     : v == Verdict::Visible ? search.stats.visible
-                             : search.stats.undecided) = 1;
-    if (stats) stats->add(search.stats);
-    return v;
-  };
   const VisPolygon& tp = polygons_[target];
-  if (tp.hull.size() < 3 || options.max_pairs <= 0) return finish(Verdict::Undecided);
-  bool all = true;
-  if (tp.box.overlaps(cell, kShaftSlack)) {
-    // Touching the cell: sight lines need not pass a portal.
-    all = hidden({box_corners(inset(cell)), true}, tp.hull, true, true, 0, search);
-  } else {
-    for (const Exit& e : exits) {
-      // Only what lies beyond the portal is seen through it.
-      const Winding part = clip_front(tp.hull, e.out);
-      if (part.size() < 3 || e.hull.size() < 3) continue;
-      if (!hidden({e.hull, false}, part, true, true, 0, search)) {
-        all = false;
-        break;
-      }
-    }
+  // Touching the cell: sight lines need not pass a portal.
+  if (tp.box.overlaps(cell, kShaftSlack)) return prove_from_box(cell, target, options, stats);
+  Search search{target, options, {}};
+  bool all = tp.hull.size() >= 3 && options.max_pairs > 0;
+  for (const Exit& e : exits) {
+    if (!all) break;
+    // Only what lies beyond the portal is seen through it.
+    const Winding part = clip_front(tp.hull, e.out);
+    if (part.size() >= 3 && e.hull.size() >= 3) all = hidden({e.hull, false}, part, true, true, 0, search);
   }
-  if (search.visible) return finish(Verdict::Visible);
-  return finish(all ? Verdict::Hidden : Verdict::Undecided);
+  return search.conclude(all, stats);
 }
 
 Verdict HiddenProver::prove_from_box(const Box& viewer, std::uint32_t target, const ProofOptions& options,
                                      ProofStats* stats) const {
   Search search{target, options, {}};
-  search.stats.tried = 1;
   const VisPolygon& tp = polygons_[target];
-  const bool all =
-      tp.hull.size() >= 3 && hidden({box_corners(inset(viewer)), true}, tp.hull, true, true, 0, search);
-  const Verdict v = search.visible ? Verdict::Visible : all ? Verdict::Hidden : Verdict::Undecided;
-  (v == Verdict::Hidden    ? search.stats.hidden
-   : v == Verdict::Visible ? search.stats.visible
-                           : search.stats.undecided) = 1;
-  if (stats) stats->add(search.stats);
-  return v;
+  const bool all = tp.hull.size() >= 3 && options.max_pairs > 0 &&
+                   hidden({box_corners(inset(viewer)), true}, tp.hull, true, true, 0, search);
+  return search.conclude(all, stats);
 }
 
 }  // namespace walk::compiler

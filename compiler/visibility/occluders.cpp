@@ -8,17 +8,6 @@
 namespace walk::compiler {
 namespace {
 
-// Area of a planar winding (m^2).
-double area(const Winding& w, const model::Vec3& normal) {
-  model::Vec3 sum(0.0);
-  for (std::size_t i = 0; i < w.size(); ++i) sum += glm::cross(w[i], w[(i + 1) % w.size()]);
-  return 0.5 * std::abs(glm::dot(sum, normal));
-}
-
-// A polygon fills its hull when their areas agree to this fraction (the hull of a polygon with a notch or
-// a hole is larger by the notch's or hole's area).
-constexpr double kConvexArea = 1e-6;
-
 bool inside(const Occluder& o, const model::Vec3& q) {
   for (const Plane& e : o.edges)
     if (e.distance(q) < kPlaneEpsilon) return false;
@@ -31,7 +20,7 @@ std::optional<Occluder> make_occluder(Winding outline, const model::Vec3& normal
   if (outline.size() < 3) return std::nullopt;
   Occluder o;
   o.plane = {normal, -glm::dot(normal, outline[0])};
-  o.area = area(outline, normal);
+  o.area = winding_area(outline, normal);
   for (std::size_t i = 0; i < outline.size(); ++i) {
     const model::Vec3& a = outline[i];
     const model::Vec3 e = outline[(i + 1) % outline.size()] - a;
@@ -54,14 +43,10 @@ std::vector<std::vector<Occluder>> cell_occluders(const Partition& part,
       if (!vp.opaque || glm::length(vp.normal) == 0.0) continue;
       auto o = make_occluder(vp.hull, vp.normal);
       if (!o) continue;
-      double tri_area = 0.0;
       bool planar = true;
-      for (const auto& t : vp.triangles) {
-        tri_area += 0.5 * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
+      for (const auto& t : vp.triangles)
         for (const auto& v : t) planar = planar && std::abs(o->plane.distance(v)) <= kPlaneEpsilon;
-      }
-      if (!planar || o->area < kMinOccluderArea || std::abs(o->area - tri_area) > kConvexArea * o->area)
-        continue;
+      if (!planar || o->area < kMinOccluderArea || !fills_hull(vp)) continue;
       out[c].push_back(std::move(*o));
     }
     auto& list = out[c];

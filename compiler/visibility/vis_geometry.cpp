@@ -178,6 +178,22 @@ std::vector<VisPolygon> vis_polygons(std::span<const model::VertexRecord> vertic
   return out;
 }
 
+double winding_area(const Winding& w, const model::Vec3& normal) {
+  model::Vec3 sum(0.0);
+  for (std::size_t i = 0; i < w.size(); ++i) sum += glm::cross(w[i], w[(i + 1) % w.size()]);
+  return 0.5 * std::abs(glm::dot(sum, normal));
+}
+
+bool fills_hull(const VisPolygon& p) {
+  // The fraction the areas may differ by: rounding, far below any real notch.
+  constexpr double kConvexArea = 1e-6;
+  if (p.hull.size() < 3) return false;
+  double area = 0.0;
+  for (const auto& t : p.triangles) area += 0.5 * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
+  const double hull = winding_area(p.hull, p.normal);
+  return std::abs(hull - area) <= kConvexArea * hull;
+}
+
 bool faces_away_from(const VisPolygon& p, const Box& box) {
   if (p.triangles.empty()) return false;
   for (const auto& t : p.triangles) {

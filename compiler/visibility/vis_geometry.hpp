@@ -68,6 +68,12 @@ struct VisPolygon {
   double coord = 0.0;  // its plane's coordinate on that axis
 };
 
+// Area of a planar winding (m^2), measured about the unit `normal` of its plane.
+[[nodiscard]] double winding_area(const Winding& w, const model::Vec3& normal);
+// Does `p` fill its hull? Their areas agree to 1e-6 (a notch or a hole makes the hull larger by its area).
+// Then every piece of the hull meets the polygon, and the hull may stand for it as an occluder.
+[[nodiscard]] bool fills_hull(const VisPolygon& p);
+
 // Does every triangle of `p` face away from every point of `box` (the box on or behind each triangle's
 // plane)? Then a renderer that culls back faces never draws `p` from anywhere in the box. Degenerate
 // triangles (no area, nothing to draw) do not count against it.
