@@ -66,19 +66,22 @@ std::string structure_detail(const RayCaster& c) {
   const auto& p = a->planes().stats();
   const auto& b = a->bsp().stats();
   const auto& k = a->planes().blocks().stats();
-  char buf[300];
+  char buf[400];
   std::snprintf(
       buf, sizeof buf,
       "axial %zu tris in %zu+%zu+%zu planes (%zu rects) over %zux%zux%zu blocks (%zu empty, %zu holding BSP "
-      "tris) with %zu listings; bsp %zu tris %zu nodes (%zu axial splits) depth %d",
+      "tris) with %zu listings (%s); bsp %zu tris %zu nodes (%zu axial splits) depth %d",
       p.triangles, p.planes[0], p.planes[1], p.planes[2], p.rectangles, k.blocks[0], k.blocks[1], k.blocks[2],
-      k.empty, k.marked, k.entries, b.triangles, b.nodes, b.axis_splits, b.depth);
+      k.empty, k.marked, k.entries, a->planes().blocks().uses_lanes() ? "avx-512 lanes" : "scalar merge",
+      b.triangles, b.nodes, b.axis_splits, b.depth);
   return buf;
 }
 
 // A caster by name; "axial@B" is the axial structure with B blocks per element and no limit from the plane
 // count (for the block-size sweep).
 std::unique_ptr<RayCaster> make_caster(const std::string& name, const std::vector<compiler::Triangle>& tris) {
+  if (name == "axial-scalar")
+    return std::make_unique<compiler::AxialCaster>(tris, compiler::BlockSizing{.lanes = false});
   if (!name.starts_with("axial@")) return compiler::make_ray_caster(name, tris);
   return std::make_unique<compiler::AxialCaster>(
       tris, compiler::BlockSizing{.per_element = std::stod(name.substr(6)), .planes_per_layer = 0.0});
@@ -180,8 +183,8 @@ void add_bench_rays_command(CLI::App& bench, int& exit_code) {
       ->capture_default_str();
   rays->add_option(
           "--casters", opt->casters,
-          "Comma-separated: axial, bvh, brute, embree; axial@B[+skew|+bsp]: axial with B blocks per element "
-          "and the non-axial triangles in the blocks or the BSP")
+          "Comma-separated: axial, bvh, brute, embree; axial-scalar: axial without the AVX-512 listing "
+          "kernel; axial@B: axial with B blocks per element")
       ->capture_default_str();
   rays->add_option("--threads", opt->threads, "Comma-separated thread counts")->capture_default_str();
   rays->add_option("--rays", opt->rays, "Rays per set")->capture_default_str();

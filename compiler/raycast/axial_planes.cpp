@@ -111,9 +111,9 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
   stats_.elements = elements.size();
   const auto target = std::max<std::size_t>(
       1, static_cast<std::size_t>(sizing.per_element * static_cast<double>(elements.size())));
-  blocks_ = PlaneBlocks(boxes, target, sizing.planes_per_layer);
+  blocks_ = PlaneBlocks(boxes, target, sizing.planes_per_layer, sizing.lanes);
   if (sizing.planes_per_layer > 0.0 && blocks_.stats().longest > kLongestListing)
-    blocks_ = PlaneBlocks(boxes, target, 0.0);
+    blocks_ = PlaneBlocks(boxes, target, 0.0, sizing.lanes);
   // Each block's elements copied in place: a crossing reads one contiguous run, with no index to chase (the
   // walk is bound by memory latency on big buildings).
   cell_elements_.reserve(blocks_.items().size());
@@ -131,7 +131,8 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
       [&](int k, std::uint32_t first, std::uint32_t count, double t, double pu, double pv) {
         for (std::uint32_t c = first; c < first + count; ++c) {
           const Element& e = cell_elements_[c];
-          if (pu < e.u0 || pu > e.u1 || pv < e.v0 || pv > e.v1) continue;
+          // One branch, not four: whether a point passes an element's bounds is unpredictable.
+          if (!((pu >= e.u0) & (pu <= e.u1) & (pv >= e.v0) & (pv <= e.v1))) continue;
           bool inside = true;
           for (std::uint32_t j = e.edge_first; j < e.edge_first + e.edge_count; ++j) {
             const EdgeLine& l = edges_[j];

@@ -17,8 +17,8 @@ std::pair<int, int> layers_meeting(const std::vector<double>& edges, double lo, 
 
 }  // namespace
 
-PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks,
-                         double planes_per_layer) {
+PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks, double planes_per_layer,
+                         bool lanes) {
   if (boxes.empty()) return;
   model::Vec3 lo(INFINITY), hi(-INFINITY);
   for (const PlaneBox& b : boxes) {
@@ -148,6 +148,8 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
           entries_[blocks_[blk].end[2] - 1].first + entries_[blocks_[blk].end[2] - 1].count;
     }
   stats_.entries = entries_.size();
+  if (lanes && crossing_lanes_available())
+    for (const Entry& e : entries_) lanes_.push_back(e.coord, e.u0, e.u1, e.v0, e.v1);
 }
 
 bool PlaneBlocks::mark(const model::Vec3& lo, const model::Vec3& hi) {
@@ -174,7 +176,7 @@ void PlaneBlocks::for_blocks_meeting(const model::Vec3& lo, const model::Vec3& h
 
 std::size_t PlaneBlocks::memory_bytes() const {
   return blocks_.capacity() * sizeof(Block) + entries_.capacity() * sizeof(Entry) +
-         items_.capacity() * sizeof(std::uint32_t) +
+         items_.capacity() * sizeof(std::uint32_t) + lanes_.memory_bytes() +
          (edges_[0].capacity() + edges_[1].capacity() + edges_[2].capacity()) * sizeof(double);
 }
 

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench/support/leak_box.hpp"
+#include "compiler/raycast/axial_caster.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -29,6 +30,7 @@ struct LeakCase {
   bool quads;
   bool rotated;
   double shift;
+  bool scalar = false;  // the scalar merge instead of the AVX-512 lanes (where the CPU has them)
 };
 
 class RayLeak : public ::testing::TestWithParam<LeakCase> {};
@@ -36,11 +38,13 @@ class RayLeak : public ::testing::TestWithParam<LeakCase> {};
 TEST_P(RayLeak, NoRayEscapes) {
   const LeakCase c = GetParam();
   const auto box = bench::leak_box(c.quads, 5, c.rotated ? tilted() : glm::dmat3(1.0), model::Vec3(c.shift));
-  const auto caster = make_ray_caster("axial", box.triangles);
+  const std::unique_ptr<RayCaster> caster =
+      c.scalar ? std::make_unique<AxialCaster>(box.triangles, BlockSizing{.lanes = false})
+               : make_ray_caster("axial", box.triangles);
   const auto start = std::chrono::steady_clock::now();
   std::size_t escapes = 0, any_escapes = 0, early = 0, total = 0;
   for (unsigned part = 0; part < 4; ++part) {
-    const std::size_t count = (c.rotated || c.shift != 0.0 ? kOtherRays : kAxialRays) / 4;
+    const std::size_t count = (c.rotated || c.shift != 0.0 || c.scalar ? kOtherRays : kAxialRays) / 4;
     const auto rays = bench::leak_rays(box, count, 100 + part);
     std::vector<RayHit> hits(rays.size());
     std::vector<std::uint8_t> occluded(rays.size());
@@ -69,7 +73,9 @@ INSTANTIATE_TEST_SUITE_P(Boxes, RayLeak,
                                            LeakCase{"rotated_quads", true, true, 0.0},
                                            LeakCase{"rotated_triangles", false, true, 0.0},
                                            LeakCase{"far_axial_triangles", false, false, 1e6},
-                                           LeakCase{"far_rotated_triangles", false, true, 1e6}),
+                                           LeakCase{"far_rotated_triangles", false, true, 1e6},
+                                           LeakCase{"axial_triangles_scalar_merge", false, false, 0.0, true},
+                                           LeakCase{"far_axial_quads_scalar_merge", true, false, 1e6, true}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
