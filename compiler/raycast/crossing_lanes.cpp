@@ -1,5 +1,7 @@
 #include "compiler/raycast/crossing_lanes.hpp"
 
+#include "compiler/raycast/plane_blocks.hpp"  // kPlaneU, kPlaneV
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -20,7 +22,6 @@ __attribute__((target("avx512f,avx512vl,popcnt"))) int gather_crossings(const Cr
   const __m512d t_enter = _mm512_set1_pd(r.t_enter), tmin = _mm512_set1_pd(r.tmin);
   const __m512d t_exit = _mm512_set1_pd(r.t_exit), limit = _mm512_set1_pd(r.limit);
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  constexpr int kU[3] = {1, 2, 0}, kV[3] = {2, 0, 1};  // kPlaneU, kPlaneV
   int n = 0;
   std::uint32_t lo = first;
   for (int k = 0; k < 3; ++k) {
@@ -30,8 +31,8 @@ __attribute__((target("avx512f,avx512vl,popcnt"))) int gather_crossings(const Cr
       continue;
     }
     const __m512d ok = _mm512_set1_pd(r.o[k]), inv = _mm512_set1_pd(r.inv[k]);
-    const __m512d ou = _mm512_set1_pd(r.o[kU[k]]), du = _mm512_set1_pd(r.d[kU[k]]);
-    const __m512d ov = _mm512_set1_pd(r.o[kV[k]]), dv = _mm512_set1_pd(r.d[kV[k]]);
+    const __m512d ou = _mm512_set1_pd(r.o[kPlaneU[k]]), du = _mm512_set1_pd(r.d[kPlaneU[k]]);
+    const __m512d ov = _mm512_set1_pd(r.o[kPlaneV[k]]), dv = _mm512_set1_pd(r.d[kPlaneV[k]]);
     for (std::uint32_t j = lo; j < hi; j += 8) {
       const std::uint32_t left = hi - j;
       const __mmask8 live = left >= 8 ? 0xFF : static_cast<__mmask8>((1u << left) - 1);

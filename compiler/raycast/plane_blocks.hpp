@@ -217,7 +217,7 @@ void PlaneBlocks::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
     if (b.end[2] != b.first) {
       __builtin_prefetch(&entries_[b.first]);
       prefetch(b.items_first, b.items_end);
-      if (!lanes_.coord.empty() && b.end[2] - b.first <= kGathered) {
+      if (uses_lanes() && b.end[2] - b.first <= kGathered) {
         // Every listing the ray crosses inside its bounds, gathered eight at a time (crossing_lanes.hpp),
         // then visited in increasing t: the merge's order, without its unpredictable branches.
         double ct[kGathered], cu[kGathered], cv[kGathered];
