@@ -25,7 +25,7 @@ AxialCaster::AxialCaster(std::span<const Triangle> triangles, const BlockSizing&
   for (const std::uint32_t i : not_taken(axial_)) {
     if (!bsp_marked_) break;
     const Triangle& t = local_.triangles[i];
-    bsp_marked_ = planes_.mark(glm::min(t.a, glm::min(t.b, t.c)), glm::max(t.a, glm::max(t.b, t.c)));
+    bsp_marked_ = planes_.mark(t.a, t.b, t.c);
   }
   std::vector<std::uint8_t>().swap(axial_);
   if (bsp_.empty()) {  // only the BSP reads the triangles after the build

@@ -126,6 +126,7 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
                        RayHit* best, MarkedSpan* marked) const {
   double limit = tmax;
   bool any = false;
+  const double dk[3] = {d.x, d.y, d.z};  // not glm's operator[], a switch on the axis
   blocks_.walk<!kAny>(
       o, d, tmin, limit,
       [&](int k, std::uint32_t first, std::uint32_t count, double t, double pu, double pv) {
@@ -146,7 +147,7 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
             any = true;
             return true;
           } else {
-            const bool front = e.normal_sign * d[k] < 0.0;
+            const bool front = e.normal_sign * dk[k] < 0.0;
             if (better_hit(t, front, e.triangle, *best, tie)) {
               *best = {t, e.triangle, e.polygon, front};
               limit = std::min(tmax, t + tie);

@@ -45,8 +45,10 @@ class AxialPlanes {
                RayHit& best, MarkedSpan* marked = nullptr) const;
   [[nodiscard]] bool occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
                               MarkedSpan* marked = nullptr) const;
-  // Marks the blocks the box reaches (PlaneBlocks::mark).
-  bool mark(const model::Vec3& lo, const model::Vec3& hi) { return blocks_.mark(lo, hi); }
+  // Marks the blocks the triangle reaches (PlaneBlocks::mark).
+  bool mark(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c) {
+    return blocks_.mark(a, b, c);
+  }
 
   [[nodiscard]] const Stats& stats() const { return stats_; }
   [[nodiscard]] const PlaneBlocks& blocks() const { return blocks_; }

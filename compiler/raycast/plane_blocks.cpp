@@ -1,5 +1,6 @@
 #include "compiler/raycast/plane_blocks.hpp"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace walk::compiler {
@@ -13,6 +14,39 @@ std::pair<int, int> layers_meeting(const std::vector<double>& edges, double lo, 
   int first = static_cast<int>(std::lower_bound(edges.begin(), edges.end(), lo - margin) - edges.begin()) - 1;
   int last = static_cast<int>(std::upper_bound(edges.begin(), edges.end(), hi + margin) - edges.begin()) - 1;
   return {std::clamp(first, 0, n - 1), std::clamp(last, 0, n - 1)};
+}
+
+// Bounds of the part of the convex polygon inside the box [lo, hi] (Sutherland-Hodgman against its six
+// faces); false when none is. The clipped corners carry rounding of a few ulp, which the caller's margin
+// covers.
+bool part_bounds(std::vector<model::Vec3> poly, const model::Vec3& lo, const model::Vec3& hi,
+                 model::Vec3& part_lo, model::Vec3& part_hi) {
+  std::vector<model::Vec3> kept;
+  for (int k = 0; k < 3 && !poly.empty(); ++k)
+    for (const double sign : {1.0, -1.0}) {  // keep sign * (p[k] - bound) >= 0
+      const double bound = sign > 0.0 ? lo[k] : hi[k];
+      kept.clear();
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const model::Vec3& p = poly[i];
+        const model::Vec3& q = poly[(i + 1) % poly.size()];
+        const double dp = sign * (p[k] - bound), dq = sign * (q[k] - bound);
+        if (dp >= 0.0) kept.push_back(p);
+        if ((dp < 0.0) != (dq < 0.0)) {
+          model::Vec3 x = p + (q - p) * (dp / (dp - dq));
+          x[k] = bound;  // exactly on the face, whatever the rounding of the interpolation
+          kept.push_back(x);
+        }
+      }
+      poly.swap(kept);
+      if (poly.empty()) break;
+    }
+  if (poly.empty()) return false;
+  part_lo = part_hi = poly[0];
+  for (const model::Vec3& p : poly) {
+    part_lo = glm::min(part_lo, p);
+    part_hi = glm::max(part_hi, p);
+  }
+  return true;
 }
 
 }  // namespace
@@ -152,14 +186,29 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
     for (const Entry& e : entries_) lanes_.push_back(e.coord, e.u0, e.u1, e.v0, e.v1);
 }
 
-bool PlaneBlocks::mark(const model::Vec3& lo, const model::Vec3& hi) {
+bool PlaneBlocks::mark(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c) {
   if (blocks_.empty()) return false;
+  const model::Vec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
   for (int k = 0; k < 3; ++k)
     if (!(lo[k] >= edges_[k].front() && hi[k] <= edges_[k].back())) return false;
+  const std::vector<model::Vec3> triangle = {a, b, c};
   for_blocks_meeting(lo, hi, [&](std::size_t block) {
-    Block& b = blocks_[block];
-    if (!b.marked) ++stats_.marked;
-    b.marked = true;
+    const std::size_t i0 = block % n_[0], i1 = block / n_[0] % n_[1], i2 = block / n_[0] / n_[1];
+    const model::Vec3 block_lo(edges_[0][i0], edges_[1][i1], edges_[2][i2]);
+    const model::Vec3 block_hi(edges_[0][i0 + 1], edges_[1][i1 + 1], edges_[2][i2 + 1]);
+    model::Vec3 part_lo, part_hi;
+    if (!part_bounds(triangle, block_lo - margin_, block_hi + margin_, part_lo, part_hi)) return;
+    Block& blk = blocks_[block];
+    if (blk.mark == 0) {
+      marks_.push_back({{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}});
+      blk.mark = static_cast<std::uint32_t>(marks_.size());
+      ++stats_.marked;
+    }
+    MarkBox& m = marks_[blk.mark - 1];
+    for (int k = 0; k < 3; ++k) {
+      m.lo[k] = std::min(m.lo[k], part_lo[k] - margin_);
+      m.hi[k] = std::max(m.hi[k], part_hi[k] + margin_);
+    }
   });
   return true;
 }
@@ -176,7 +225,8 @@ void PlaneBlocks::for_blocks_meeting(const model::Vec3& lo, const model::Vec3& h
 
 std::size_t PlaneBlocks::memory_bytes() const {
   return blocks_.capacity() * sizeof(Block) + entries_.capacity() * sizeof(Entry) +
-         items_.capacity() * sizeof(std::uint32_t) + lanes_.memory_bytes() +
+         items_.capacity() * sizeof(std::uint32_t) + marks_.capacity() * sizeof(MarkBox) +
+         lanes_.memory_bytes() +
          (edges_[0].capacity() + edges_[1].capacity() + edges_[2].capacity()) * sizeof(double);
 }
 

@@ -108,9 +108,11 @@ class PlaneBlocks {
   void walk(const model::Vec3& o, const model::Vec3& d, double tmin, const double& limit, Visit&& visit,
             Prefetch&& prefetch, MarkedSpan* marked = nullptr) const;
 
-  // Marks every block that the box [lo, hi] reaches within the margin. Returns false when the box is not
-  // inside the grid (a walk can then not tell where a ray meets it), true otherwise.
-  bool mark(const model::Vec3& lo, const model::Vec3& hi);
+  // Marks every block that the triangle (a, b, c) reaches within the margin, and grows the block's marked
+  // box by the bounds of the triangle's part inside the block: a walk counts a marked block only where the
+  // ray passes that box. Returns false when the triangle is not inside the grid (a walk can then not tell
+  // where a ray meets it), true otherwise.
+  bool mark(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c);
 
   [[nodiscard]] const Stats& stats() const { return stats_; }
   // Whether the walk tests listings eight at a time (BlockSizing::lanes on a CPU with AVX-512).
@@ -132,7 +134,10 @@ class PlaneBlocks {
     std::uint32_t first;
     std::uint32_t end[3];
     std::uint32_t items_first, items_end;  // the items of all its entries, for prefetching
-    bool marked;                           // see mark()
+    std::uint32_t mark;                    // 1 + its index in marks_, 0 when not marked (see mark())
+  };
+  struct MarkBox {  // the bounds of the marked triangles' parts inside a block, widened by the margin
+    double lo[3], hi[3];
   };
 
   [[nodiscard]] std::size_t block_index(const int idx[3]) const {
@@ -149,6 +154,7 @@ class PlaneBlocks {
   double per_metre_[3] = {0.0, 0.0, 0.0};  // layers per metre
   std::vector<Block> blocks_;
   std::vector<Entry> entries_;
+  std::vector<MarkBox> marks_;
   CrossingLanes lanes_;  // entries_' coordinates and bounds as arrays; empty when not used
   std::vector<std::uint32_t> items_;
   double margin_ = 0.0;  // kBlockMargin times the grid's diagonal
@@ -176,9 +182,12 @@ inline int PlaneBlocks::layer_at(int k, double ok, double dk, double inv, double
 }
 
 template <bool kOrdered, class Visit, class Prefetch>
-void PlaneBlocks::walk(const model::Vec3& o, const model::Vec3& d, double tmin, const double& limit,
+void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double tmin, const double& limit,
                        Visit&& visit, Prefetch&& prefetch, MarkedSpan* marked) const {
   if (blocks_.empty()) return;
+  // Plain arrays: glm's operator[] with a run-time axis is a switch, three branches per use.
+  const double o[3] = {origin.x, origin.y, origin.z};
+  const double d[3] = {dir.x, dir.y, dir.z};
   double inv[3] = {0.0, 0.0, 0.0};
   double t0 = tmin, t1 = limit;
   for (int k = 0; k < 3; ++k) {
@@ -207,12 +216,25 @@ void PlaneBlocks::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
   for (;;) {
     const Block& b = blocks_[block_index(idx)];
     const double t_exit = std::min({next[0], next[1], next[2]});
-    if (marked && b.marked) {
-      // A point the walk places in this block lies in it up to rounding; the margin in t covers that
-      // (margin / |d| <= margin / max |d_k|).
+    if (marked && b.mark != 0) {
+      // The ray's interval in the block's marked box. A point the walk places in this block lies in it up
+      // to rounding; the margin in t covers that (margin / |d| <= margin / max |d_k|).
       const double slack = margin_ / std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])});
-      marked->first = std::min(marked->first, t_enter - slack);
-      marked->last = std::max(marked->last, std::min(t_exit, limit) + slack);
+      const MarkBox& m = marks_[b.mark - 1];
+      double ta = t_enter - slack, tb = std::min(t_exit, limit) + slack;
+      for (int k = 0; k < 3; ++k) {
+        if (d[k] == 0.0) {  // parallel: inside the box's slab throughout or never
+          if (!(o[k] >= m.lo[k] && o[k] <= m.hi[k])) tb = -INFINITY;
+          continue;
+        }
+        const double n = (m.lo[k] - o[k]) * inv[k], f = (m.hi[k] - o[k]) * inv[k];
+        ta = std::max(ta, std::min(n, f));
+        tb = std::min(tb, std::max(n, f));
+      }
+      if (ta <= tb) {
+        marked->first = std::min(marked->first, ta - slack);
+        marked->last = std::max(marked->last, tb + slack);
+      }
     }
     if (b.end[2] != b.first) {
       __builtin_prefetch(&entries_[b.first]);
@@ -224,7 +246,7 @@ void PlaneBlocks::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
         std::uint32_t ci[kGathered];
         const Crossings out{ct, cu, cv, ci};
         const int n =
-            gather_crossings(lanes_, b.first, b.end, {&o[0], &d[0], inv, t_enter, tmin, t_exit, limit}, out);
+            gather_crossings(lanes_, b.first, b.end, {o, d, inv, t_enter, tmin, t_exit, limit}, out);
         for (int done = 0; done < n; ++done) {
           int i = done;  // the next crossing: least t, the earlier listing on equal t (lower axis first)
           if constexpr (kOrdered) {

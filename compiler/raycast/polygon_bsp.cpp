@@ -190,6 +190,8 @@ bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmi
   double limit = tmax;
   if (!kAny && best->hit()) limit = std::min(limit, best->t + tie);
   const model::Vec3 inv(1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z);
+  // Plain arrays for the axis splits: glm's operator[] with a run-time axis is a switch.
+  const double oa[3] = {o.x, o.y, o.z}, da[3] = {dir.x, dir.y, dir.z}, inva[3] = {inv.x, inv.y, inv.z};
   double t0 = tmin, t1 = limit;
   if (!slab(nodes_[0].lo, nodes_[0].hi, o, inv, t0, t1)) return false;
   // The shear is set up at the first leaf the ray reaches: most rays that meet the tree's bounds (the whole
@@ -226,9 +228,9 @@ bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmi
       // division.
       double dist, denom, inv_denom;
       if (n.axis >= 0) {
-        dist = o[n.axis] - n.offset;
-        denom = dir[n.axis];
-        inv_denom = inv[n.axis];
+        dist = oa[n.axis] - n.offset;
+        denom = da[n.axis];
+        inv_denom = inva[n.axis];
       } else {
         dist = glm::dot(n.normal, o) - n.offset;
         denom = glm::dot(n.normal, dir);

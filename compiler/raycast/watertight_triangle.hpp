@@ -46,9 +46,10 @@ inline constexpr double kSignFilter = 4.0e-16;
 [[nodiscard]] inline bool intersect_watertight(const ShearedRay& r, const model::Vec3& a,
                                                const model::Vec3& b, const model::Vec3& c, double tmin,
                                                double tmax, double& t) {
-  const model::Vec3 A = a - r.origin;
-  const model::Vec3 B = b - r.origin;
-  const model::Vec3 C = c - r.origin;
+  // Plain arrays: glm's operator[] with a run-time axis is a switch, three branches per use.
+  const double A[3] = {a.x - r.origin.x, a.y - r.origin.y, a.z - r.origin.z};
+  const double B[3] = {b.x - r.origin.x, b.y - r.origin.y, b.z - r.origin.z};
+  const double C[3] = {c.x - r.origin.x, c.y - r.origin.y, c.z - r.origin.z};
   const double ax = A[r.kx] - r.sx * A[r.kz], ay = A[r.ky] - r.sy * A[r.kz];
   const double bx = B[r.kx] - r.sx * B[r.kz], by = B[r.ky] - r.sy * B[r.kz];
   const double cx = C[r.kx] - r.sx * C[r.kz], cy = C[r.ky] - r.sy * C[r.kz];

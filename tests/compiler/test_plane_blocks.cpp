@@ -244,6 +244,56 @@ TEST(PlaneBlocks, BspSearchOverTheMarkedBlocksFindsEveryHit) {
   }
 }
 
+// Slanted triangles that reach a block only on its face: one with an edge lying in a block face, one with
+// only a vertex on a block edge line, one just beyond a face by less than the margin. The part of each inside
+// the neighbouring block is a segment, a point or nothing, so that block's marked box is flat or absent; rays
+// from that block aimed at the edge and the vertex must still find them.
+TEST(PlaneBlocks, MarkedBoxesOfTrianglesTouchingABlockFace) {
+  const auto tiles = cube_lattice(4, {0.0, 4.0});
+  const AxialCaster probe(tiles, kTestBlocks);
+  const auto& ex = probe.planes().blocks().edges(0);
+  const auto& ey = probe.planes().blocks().edges(1);
+  const auto& ez = probe.planes().blocks().edges(2);
+  ASSERT_GE(ex.size(), 4u);
+  const V centre = whole_metre_centre(tiles);
+  const double x = ex[ex.size() / 2] + centre.x, y = ey[ey.size() / 2] + centre.y;
+  const double z = ez[ez.size() / 2] + centre.z;
+  auto tris = tiles;
+  auto polygon = static_cast<std::uint32_t>(tris.size());
+  const std::size_t first_slanted = tris.size();
+  tris.push_back({V(x, y - 0.3, z - 0.2), V(x, y + 0.2, z + 0.3), V(x + 0.4, y, z + 0.1), polygon++});
+  tris.push_back({V(x, y, z + 0.1), V(x + 0.3, y + 0.1, z + 0.3), V(x + 0.1, y + 0.4, z + 0.2), polygon++});
+  tris.push_back({V(x + 1e-12, y - 0.9, z + 0.5), V(x + 0.3, y - 0.6, z + 0.6), V(x + 0.2, y - 0.8, z + 0.9),
+                  polygon++});
+  const AxialCaster ours(tris, kTestBlocks);
+  for (int k = 0; k < 3; ++k)  // the same bounds and counts: the same blocks
+    ASSERT_EQ(ours.planes().blocks().edges(k).size(), probe.planes().blocks().edges(k).size());
+  const BruteForceCaster reference(tris);
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> w(0.0, 1.0), off(0.05, 0.6);
+  Tally tally;
+  for (std::size_t i = first_slanted; i < tris.size(); ++i) {
+    const Triangle& t = tris[i];
+    for (int j = 0; j < 300; ++j) {
+      // The vertices, points on the edge a-b and inside, from the side x < x_edge (the neighbouring block).
+      double a = w(rng), b = w(rng);
+      if (j % 3 == 0) a = b = 0.0;
+      if (j % 3 == 1) b = 0.0;
+      if (a + b > 1.0) {
+        a = 1.0 - a;
+        b = 1.0 - b;
+      }
+      const V target = t.a + a * (t.b - t.a) + b * (t.c - t.a);
+      const V o = target - V(off(rng), off(rng) - 0.3, off(rng) - 0.3);
+      expect_same(ours, reference, tris, {o, target - o}, tally);
+      expect_same(ours, reference, tris, {o, target - o, 0.0, 1.001}, tally);
+    }
+  }
+  EXPECT_LE(tally.edge_cases, tally.checked / 100);
+  std::printf("triangles touching block faces: %zu blocks marked, %d rays, %d edge cases\n",
+              ours.planes().blocks().stats().marked, tally.checked, tally.edge_cases);
+}
+
 TEST(PlaneBlocks, EmptyAndSingleTriangleModels) {
   const AxialCaster none(std::vector<Triangle>{});
   EXPECT_FALSE(none.closest({V(0, 0, 0), V(1, 0, 0)}).hit());
