@@ -27,11 +27,20 @@ AxialCaster::AxialCaster(std::span<const Triangle> triangles, const BlockSizing&
     const Triangle& t = local_.triangles[i];
     bsp_marked_ = planes_.mark(t.a, t.b, t.c);
   }
+  // Each marked block's tag: the BSP node enclosing its marked box, where a search through it can start.
+  if (bsp_marked_)
+    planes_.tag_marks([&](const model::Vec3& lo, const model::Vec3& hi) { return bsp_.enclosing(lo, hi); });
   std::vector<std::uint8_t>().swap(axial_);
   if (bsp_.empty()) {  // only the BSP reads the triangles after the build
     std::vector<Triangle>().swap(local_.triangles);
     std::vector<model::Vec3>().swap(local_.normals);
   }
+}
+
+std::uint32_t AxialCaster::bsp_start(const MarkedSpan& span) const {
+  if (span.empty()) return kNoHit;
+  // The ray meets BSP triangles only inside the marked boxes it passed, each inside its tag's region.
+  return span.all_tags() ? bsp_.common_ancestor({span.tags, static_cast<std::size_t>(span.tag_count)}) : 0;
 }
 
 RayHit AxialCaster::closest(const Ray& ray) const {
@@ -47,8 +56,9 @@ RayHit AxialCaster::closest(const Ray& ray) const {
     // The BSP only over the span of blocks holding its triangles that the walk passed before its hit.
     MarkedSpan span;
     planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best, &span);
-    if (!span.empty())
-      bsp_.closest(o, ray.dir, std::max(tmin, span.first), std::min(ray.tmax, span.last), tie, best);
+    const std::uint32_t start = bsp_start(span);
+    if (start != kNoHit)
+      bsp_.closest(o, ray.dir, std::max(tmin, span.first), std::min(ray.tmax, span.last), tie, best, start);
   } else {
     planes_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
     if (!bsp_.empty()) bsp_.closest(o, ray.dir, tmin, ray.tmax, tie, best);
@@ -65,8 +75,9 @@ bool AxialCaster::occluded(const Ray& ray) const {
   if (bsp_marked_) {
     MarkedSpan span;
     if (planes_.occluded(o, ray.dir, tmin, ray.tmax, &span)) return true;
-    return !span.empty() &&
-           bsp_.occluded(o, ray.dir, std::max(tmin, span.first), std::min(ray.tmax, span.last));
+    const std::uint32_t start = bsp_start(span);
+    return start != kNoHit &&
+           bsp_.occluded(o, ray.dir, std::max(tmin, span.first), std::min(ray.tmax, span.last), start);
   }
   return planes_.occluded(o, ray.dir, tmin, ray.tmax) || in_bsp();
 }

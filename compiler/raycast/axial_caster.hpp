@@ -26,6 +26,9 @@ class AxialCaster final : public RayCaster {
   PolygonBsp bsp_;
   bool bsp_first_ = false;
   bool bsp_marked_ = false;  // the planes' blocks are marked where the BSP's triangles are
+  // The BSP node to search from after a walk that passed `span`: the common ancestor of the nodes enclosing
+  // the marked boxes passed (the root when there were too many to list); kNoHit for no search at all.
+  [[nodiscard]] std::uint32_t bsp_start(const MarkedSpan& span) const;
 };
 
 }  // namespace walk::compiler

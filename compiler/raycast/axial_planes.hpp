@@ -49,6 +49,10 @@ class AxialPlanes {
   bool mark(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c) {
     return blocks_.mark(a, b, c);
   }
+  template <class F>
+  void tag_marks(F&& f) {
+    blocks_.tag_marks(f);
+  }
 
   [[nodiscard]] const Stats& stats() const { return stats_; }
   [[nodiscard]] const PlaneBlocks& blocks() const { return blocks_; }

@@ -200,7 +200,7 @@ bool PlaneBlocks::mark(const model::Vec3& a, const model::Vec3& b, const model::
     if (!part_bounds(triangle, block_lo - margin_, block_hi + margin_, part_lo, part_hi)) return;
     Block& blk = blocks_[block];
     if (blk.mark == 0) {
-      marks_.push_back({{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}});
+      marks_.push_back({{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}, 0});
       blk.mark = static_cast<std::uint32_t>(marks_.size());
       ++stats_.marked;
     }

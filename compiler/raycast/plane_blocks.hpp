@@ -64,9 +64,21 @@ struct PlaneBox {
 
 // The span of ray parameter over which a walk passed marked blocks (PlaneBlocks::mark), widened by the
 // blocks' margin: empty when it passed none.
+// `tags` are the distinct tags (PlaneBlocks::tag_marks) of the marked blocks passed, up to kSpanTags of
+// them; `tag_count` is kSpanTags + 1 when there were more.
+inline constexpr int kSpanTags = 4;
 struct MarkedSpan {
   double first = INFINITY, last = -INFINITY;
+  std::uint32_t tags[kSpanTags] = {};
+  int tag_count = 0;
   [[nodiscard]] bool empty() const { return !(first <= last); }
+  [[nodiscard]] bool all_tags() const { return tag_count <= kSpanTags; }
+  void add_tag(std::uint32_t tag) {
+    for (int i = 0; i < std::min(tag_count, kSpanTags); ++i)
+      if (tags[i] == tag) return;
+    if (tag_count < kSpanTags) tags[tag_count] = tag;
+    tag_count = std::min(tag_count + 1, kSpanTags + 1);
+  }
 };
 
 class PlaneBlocks {
@@ -114,6 +126,14 @@ class PlaneBlocks {
   // where a ray meets it), true otherwise.
   bool mark(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c);
 
+  // Tags each marked block with f(lo, hi) of its marked box: the walk gathers the tags of the marked blocks
+  // it passes (MarkedSpan::tags). The caster tags them with the BSP node enclosing the box.
+  template <class F>
+  void tag_marks(F&& f) {
+    for (MarkBox& m : marks_)
+      m.tag = f(model::Vec3(m.lo[0], m.lo[1], m.lo[2]), model::Vec3(m.hi[0], m.hi[1], m.hi[2]));
+  }
+
   [[nodiscard]] const Stats& stats() const { return stats_; }
   // Whether the walk tests listings eight at a time (BlockSizing::lanes on a CPU with AVX-512).
   [[nodiscard]] bool uses_lanes() const { return !lanes_.coord.empty(); }
@@ -138,6 +158,7 @@ class PlaneBlocks {
   };
   struct MarkBox {  // the bounds of the marked triangles' parts inside a block, widened by the margin
     double lo[3], hi[3];
+    std::uint32_t tag;
   };
 
   [[nodiscard]] std::size_t block_index(const int idx[3]) const {
@@ -232,6 +253,7 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
         tb = std::min(tb, std::max(n, f));
       }
       if (ta <= tb) {
+        marked->add_tag(m.tag);
         marked->first = std::min(marked->first, ta - slack);
         marked->last = std::max(marked->last, tb + slack);
       }

@@ -66,6 +66,7 @@ PolygonBsp::PolygonBsp(const LocalTriangles& triangles, std::vector<std::uint32_
 std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
+  nodes_[index].depth = depth;
   stats_.depth = std::max(stats_.depth, depth);
   const auto& tris = tris_->triangles;
   model::Vec3 lo(INFINITY), hi(-INFINITY);
@@ -170,17 +171,60 @@ std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
   if (!front.empty()) {
     const std::uint32_t f = build(front, depth + 1);
     nodes_[index].front = f;
+    nodes_[f].parent = index;
   }
   if (!back.empty()) {
     const std::uint32_t b = build(back, depth + 1);
     nodes_[index].back = b;
+    nodes_[b].parent = index;
   }
   return index;
 }
 
+std::uint32_t PolygonBsp::enclosing(const model::Vec3& lo, const model::Vec3& hi) const {
+  if (nodes_.empty()) return kNoHit;
+  const model::Vec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  std::uint32_t node = 0;
+  for (;;) {
+    const Node& n = nodes_[node];
+    if (n.front == kNoHit && n.back == kNoHit) return node;
+    // The box's extent along the normal: its centre's distance, plus or minus its half extents projected.
+    const double dist = glm::dot(n.normal, centre) - n.offset;
+    const double reach = glm::dot(glm::abs(n.normal), half) + 1e-15 * std::abs(dist);
+    // Beyond twice the tolerance: no triangle of the other side (all within kPlaneEps of it) reaches the box.
+    std::uint32_t side;
+    if (dist - reach > 2.0 * kPlaneEps)
+      side = n.front;
+    else if (dist + reach < -2.0 * kPlaneEps)
+      side = n.back;
+    else
+      return node;
+    if (side == kNoHit) return kNoHit;
+    node = side;
+  }
+}
+
+std::uint32_t PolygonBsp::common_ancestor(std::span<const std::uint32_t> nodes) const {
+  std::uint32_t common = kNoHit;
+  for (std::uint32_t n : nodes) {
+    if (n == kNoHit) continue;
+    if (common == kNoHit) {
+      common = n;
+      continue;
+    }
+    while (nodes_[n].depth > nodes_[common].depth) n = nodes_[n].parent;
+    while (nodes_[common].depth > nodes_[n].depth) common = nodes_[common].parent;
+    while (n != common) {
+      n = nodes_[n].parent;
+      common = nodes_[common].parent;
+    }
+  }
+  return common;
+}
+
 template <bool kAny>
-bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmin, double tmax, double tie,
-                        RayHit* best) const {
+bool PolygonBsp::search(std::uint32_t start, const model::Vec3& o, const model::Vec3& dir, double tmin,
+                        double tmax, double tie, RayHit* best) const {
   struct Entry {
     std::uint32_t node;
     double t0, t1;  // the ray's interval in the node's box, already slab-tested
@@ -193,12 +237,12 @@ bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmi
   // Plain arrays for the axis splits: glm's operator[] with a run-time axis is a switch.
   const double oa[3] = {o.x, o.y, o.z}, da[3] = {dir.x, dir.y, dir.z}, inva[3] = {inv.x, inv.y, inv.z};
   double t0 = tmin, t1 = limit;
-  if (!slab(nodes_[0].lo, nodes_[0].hi, o, inv, t0, t1)) return false;
+  if (!slab(nodes_[start].lo, nodes_[start].hi, o, inv, t0, t1)) return false;
   // The shear is set up at the first leaf the ray reaches: most rays that meet the tree's bounds (the whole
   // building's, for walls spread through it) leave by empty space or an axial hit before any leaf.
   ShearedRay ray;
   const auto& tris = tris_->triangles;
-  std::uint32_t node = 0;
+  std::uint32_t node = start;
   for (;;) {
     const Node& n = nodes_[node];
     if (n.count > 0) {
@@ -279,12 +323,13 @@ bool PolygonBsp::search(const model::Vec3& o, const model::Vec3& dir, double tmi
 }
 
 void PolygonBsp::closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
-                         double tie, RayHit& best) const {
-  if (!nodes_.empty()) search<false>(origin, dir, tmin, tmax, tie, &best);
+                         double tie, RayHit& best, std::uint32_t start) const {
+  if (!nodes_.empty()) search<false>(start, origin, dir, tmin, tmax, tie, &best);
 }
 
-bool PolygonBsp::occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax) const {
-  return !nodes_.empty() && search<true>(origin, dir, tmin, tmax, 0.0, nullptr);
+bool PolygonBsp::occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
+                          std::uint32_t start) const {
+  return !nodes_.empty() && search<true>(start, origin, dir, tmin, tmax, 0.0, nullptr);
 }
 
 std::size_t PolygonBsp::memory_bytes() const {

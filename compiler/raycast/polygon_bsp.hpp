@@ -6,6 +6,7 @@
 // leaves. Each node also keeps the bounds of what lies below it, so a ray skips empty space. Searched front
 // to back, the search stops once it is beyond the best hit so far (the axial hit).
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "compiler/raycast/local_triangles.hpp"
@@ -27,11 +28,21 @@ class PolygonBsp {
   PolygonBsp(const LocalTriangles& triangles, std::vector<std::uint32_t> ids);
 
   // Improves `best` with hits in (tmin, min(tmax, best.t + tie)); the ray (origin, dir) is local. The
-  // triangle test's per-ray set-up is done only once the ray meets the tree's bounds.
+  // triangle test's per-ray set-up is done only once the ray meets the tree's bounds. `start` (a node, the
+  // root by default) searches only its subtree: enough when the caller knows that the ray can meet the tree's
+  // triangles, within the interval, only inside the regions of nodes below it (see enclosing()).
   void closest(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
-               RayHit& best) const;
-  [[nodiscard]] bool occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin,
-                              double tmax) const;
+               RayHit& best, std::uint32_t start = 0) const;
+  [[nodiscard]] bool occluded(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax,
+                              std::uint32_t start = 0) const;
+
+  // The deepest node whose region (the side of each split above it that it lies on) holds the whole box
+  // [lo, hi] with room for the classification tolerance: a ray segment inside the box can meet only that
+  // node's triangles. kNoHit when no triangle can be there (the box lies on a side that holds none).
+  [[nodiscard]] std::uint32_t enclosing(const model::Vec3& lo, const model::Vec3& hi) const;
+  // The deepest node with all of `nodes` in its subtree (their lowest common ancestor); kNoHit entries
+  // (regions holding no triangle) are left out, and none at all gives kNoHit.
+  [[nodiscard]] std::uint32_t common_ancestor(std::span<const std::uint32_t> nodes) const;
 
   [[nodiscard]] bool empty() const { return nodes_.empty(); }
   [[nodiscard]] const Stats& stats() const { return stats_; }
@@ -45,12 +56,14 @@ class PolygonBsp {
     std::uint32_t front = kNoHit, back = kNoHit;  // children (kNoHit: none)
     std::uint32_t first = 0, count = 0;           // triangles kept here, in items_
     std::int32_t axis = -1;  // the split plane is axis = offset (normal a unit axis): no dot products
+    std::uint32_t parent = kNoHit;
+    std::int32_t depth = 0;  // below the root
   };
 
   std::uint32_t build(std::vector<std::uint32_t>& ids, int depth);
   template <bool kAny>
-  bool search(const model::Vec3& origin, const model::Vec3& dir, double tmin, double tmax, double tie,
-              RayHit* best) const;
+  bool search(std::uint32_t start, const model::Vec3& origin, const model::Vec3& dir, double tmin,
+              double tmax, double tie, RayHit* best) const;
 
   const LocalTriangles* tris_;
   std::vector<Node> nodes_;
