@@ -17,6 +17,9 @@ ShearedRay::ShearedRay(const model::Vec3& o, const model::Vec3& d) : origin(o) {
   sx = d[kx] / d[kz];
   sy = d[ky] / d[kz];
   sz = 1.0 / d[kz];
+  ox = o[kx];
+  oy = o[ky];
+  oz = o[kz];
   valid = true;
 }
 

@@ -21,6 +21,7 @@ namespace walk::compiler {
 struct ShearedRay {
   model::Vec3 origin{0.0};
   int kx = 0, ky = 1, kz = 2;
+  double ox = 0.0, oy = 0.0, oz = 0.0;  // origin[kx], origin[ky], origin[kz]
   double sx = 0.0, sy = 0.0, sz = 1.0;
   bool valid = false;  // false for a zero or non-finite direction: such a ray hits nothing
 
@@ -46,20 +47,24 @@ inline constexpr double kSignFilter = 4.0e-16;
 [[nodiscard]] inline bool intersect_watertight(const ShearedRay& r, const model::Vec3& a,
                                                const model::Vec3& b, const model::Vec3& c, double tmin,
                                                double tmax, double& t) {
-  // Plain arrays: glm's operator[] with a run-time axis is a switch, three branches per use.
-  const double A[3] = {a.x - r.origin.x, a.y - r.origin.y, a.z - r.origin.z};
-  const double B[3] = {b.x - r.origin.x, b.y - r.origin.y, b.z - r.origin.z};
-  const double C[3] = {c.x - r.origin.x, c.y - r.origin.y, c.z - r.origin.z};
-  const double ax = A[r.kx] - r.sx * A[r.kz], ay = A[r.ky] - r.sy * A[r.kz];
-  const double bx = B[r.kx] - r.sx * B[r.kz], by = B[r.ky] - r.sy * B[r.kz];
-  const double cx = C[r.kx] - r.sx * C[r.kz], cy = C[r.ky] - r.sy * C[r.kz];
+  // Each vertex coordinate loaded straight from memory by its permuted axis (glm stores x, y, z in a row;
+  // its operator[] with a run-time axis is a switch, and a local array indexed at run time waits on a store
+  // to the stack).
+  const double* pa = &a.x;
+  const double* pb = &b.x;
+  const double* pc = &c.x;
+  const double Az = pa[r.kz] - r.oz, Bz = pb[r.kz] - r.oz, Cz = pc[r.kz] - r.oz;
+  const double ax = (pa[r.kx] - r.ox) - r.sx * Az, ay = (pa[r.ky] - r.oy) - r.sy * Az;
+  const double bx = (pb[r.kx] - r.ox) - r.sx * Bz, by = (pb[r.ky] - r.oy) - r.sy * Bz;
+  const double cx = (pc[r.kx] - r.ox) - r.sx * Cz, cy = (pc[r.ky] - r.oy) - r.sy * Cz;
   const double u = edge_function(cx, cy, bx, by);
   const double v = edge_function(ax, ay, cx, cy);
   const double w = edge_function(bx, by, ax, ay);
-  if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
+  // One branch, not up to six: each sign on its own is a coin toss for a ray that misses.
+  if (((u < 0.0) | (v < 0.0) | (w < 0.0)) & ((u > 0.0) | (v > 0.0) | (w > 0.0))) return false;
   const double det = u + v + w;
   if (det == 0.0 || !std::isfinite(det)) return false;
-  const double T = (u * A[r.kz] + v * B[r.kz] + w * C[r.kz]) * r.sz;
+  const double T = (u * Az + v * Bz + w * Cz) * r.sz;
   t = T / det;
   return t > tmin && t < tmax;
 }
