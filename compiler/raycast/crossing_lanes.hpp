@@ -25,6 +25,10 @@ struct CrossingLanes {
     v1.push_back(b1);
   }
   [[nodiscard]] std::size_t memory_bytes() const { return 5 * coord.capacity() * sizeof(double); }
+  // Starts loading the first line of each array from listing `first` on.
+  void prefetch(std::uint32_t first) const {
+    for (const auto* a : {&coord, &u0, &u1, &v0, &v1}) __builtin_prefetch(a->data() + first);
+  }
 };
 
 // One ray against one block's listings: origin, direction and its inverse (0 along an axis the ray does not

@@ -236,6 +236,14 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
   double t_enter = t0;
   for (;;) {
     const Block& b = blocks_[block_index(idx)];
+    // Start loading what the block's listings test reads before the marked box is tested: the lanes' arrays
+    // or the listings themselves.
+    if (b.end[2] != b.first) {
+      if (uses_lanes() && b.end[2] - b.first <= kGathered)
+        lanes_.prefetch(b.first);
+      else
+        __builtin_prefetch(&entries_[b.first]);
+    }
     const double t_exit = std::min({next[0], next[1], next[2]});
     if (marked && b.mark != 0) {
       // The ray's interval in the block's marked box. A point the walk places in this block lies in it up
@@ -259,7 +267,6 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
       }
     }
     if (b.end[2] != b.first) {
-      __builtin_prefetch(&entries_[b.first]);
       prefetch(b.items_first, b.items_end);
       if (uses_lanes() && b.end[2] - b.first <= kGathered) {
         // Every listing the ray crosses inside its bounds, gathered eight at a time (crossing_lanes.hpp),
