@@ -168,6 +168,8 @@ std::uint32_t PolygonBsp::build(std::vector<std::uint32_t>& ids, int depth) {
     if (n[a] == 1.0 && n[(a + 1) % 3] == 0.0 && n[(a + 2) % 3] == 0.0) nodes_[index].axis = a;
   if (nodes_[index].axis >= 0) ++stats_.axis_splits;
   std::vector<std::uint32_t>().swap(ids);
+  // Neither side is empty here (an empty one would have left the other with every polygon): an inner node
+  // always has both children, which the search relies on.
   if (!front.empty()) {
     const std::uint32_t f = build(front, depth + 1);
     nodes_[index].front = f;
@@ -261,12 +263,10 @@ bool PolygonBsp::search(std::uint32_t start, const model::Vec3& o, const model::
           limit = std::min(tmax, t + tie);
         }
       }
-    }
-    // Children whose boxes the ray meets within its interval on their side of the split, near side first.
-    std::uint32_t next[2];
-    double next_t0[2], next_t1[2];
-    int count = 0;
-    if (n.front != kNoHit || n.back != kNoHit) {
+    } else {
+      // An inner node (the build leaves no side empty, so it has both children): the children whose boxes
+      // the ray meets within its interval on their side of the split, near side first. Both are tested and
+      // the next node picked by selects: one unpredictable branch a node instead of six.
       t1 = std::min(t1, limit);
       // Distance to the split plane and approach speed; an axis plane needs neither dot products nor a
       // division.
@@ -283,31 +283,31 @@ bool PolygonBsp::search(std::uint32_t start, const model::Vec3& o, const model::
       // Rounding margin in t: the classification tolerance plus the rounding of dist, over the approach
       // speed.
       const double margin = (2.0 * kPlaneEps + 1e-15 * std::abs(dist)) * std::abs(inv_denom);
-      const auto add = [&](std::uint32_t child, double a, double b) {
-        if (child == kNoHit || !(a <= b)) return;
-        if (!slab(nodes_[child].lo, nodes_[child].hi, o, inv, a, b)) return;
-        next[count] = child;
-        next_t0[count] = a;
-        next_t1[count] = b;
-        ++count;
-      };
+      std::uint32_t near_child, far_child;
+      double a0 = t0, b0 = t1, a1 = t0, b1 = t1;
       if (!(std::abs(denom) > 0.0) || !std::isfinite(margin)) {  // parallel to the plane: stays on its side
-        if (dist >= -kPlaneEps) add(n.front, t0, t1);
-        if (dist <= kPlaneEps) add(n.back, t0, t1);
+        near_child = n.front;
+        far_child = n.back;
+        if (!(dist >= -kPlaneEps)) b0 = -INFINITY;
+        if (!(dist <= kPlaneEps)) b1 = -INFINITY;
       } else {
         const double ts = -dist * inv_denom;
-        const std::uint32_t first = denom > 0.0 ? n.back : n.front;  // the side the ray is on before ts
-        const std::uint32_t second = denom > 0.0 ? n.front : n.back;
-        add(first, t0, std::min(t1, ts + margin));
-        add(second, std::max(t0, ts - margin), t1);
+        const bool up = denom > 0.0;  // the ray is on the back side before ts
+        near_child = up ? n.back : n.front;
+        far_child = up ? n.front : n.back;
+        b0 = std::min(t1, ts + margin);
+        a1 = std::max(t0, ts - margin);
       }
-    }
-    if (count == 2) stack[top++] = {next[1], next_t0[1], next_t1[1]};
-    if (count > 0) {
-      node = next[0];
-      t0 = next_t0[0];
-      t1 = next_t1[0];
-      continue;
+      const bool near_hit = slab(nodes_[near_child].lo, nodes_[near_child].hi, o, inv, a0, b0);
+      const bool far_hit = slab(nodes_[far_child].lo, nodes_[far_child].hi, o, inv, a1, b1);
+      stack[top] = {far_child, a1, b1};
+      top += near_hit & far_hit;
+      if (near_hit | far_hit) {
+        node = near_hit ? near_child : far_child;
+        t0 = near_hit ? a0 : a1;
+        t1 = near_hit ? b0 : b1;
+        continue;
+      }
     }
     for (;;) {  // the nearest pending node still in front of the best hit
       if (top == 0) return false;
