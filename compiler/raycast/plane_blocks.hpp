@@ -236,13 +236,11 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
   double t_enter = t0;
   for (;;) {
     const Block& b = blocks_[block_index(idx)];
-    // Start loading what the block's listings test reads before the marked box is tested: the lanes' arrays
-    // or the listings themselves.
+    // Start loading what the block's listings test reads before the marked box is tested: the listings (a
+    // crossing reads its items' range there) and the lanes' arrays.
     if (b.end[2] != b.first) {
-      if (uses_lanes() && b.end[2] - b.first <= kGathered)
-        lanes_.prefetch(b.first);
-      else
-        __builtin_prefetch(&entries_[b.first]);
+      __builtin_prefetch(&entries_[b.first]);
+      if (uses_lanes() && b.end[2] - b.first <= kGathered) lanes_.prefetch(b.first);
     }
     const double t_exit = std::min({next[0], next[1], next[2]});
     if (marked && b.mark != 0) {
