@@ -298,8 +298,10 @@ bool PolygonBsp::search(std::uint32_t start, const model::Vec3& o, const model::
         b0 = std::min(t1, ts + margin);
         a1 = std::max(t0, ts - margin);
       }
-      const bool near_hit = slab(nodes_[near_child].lo, nodes_[near_child].hi, o, inv, a0, b0);
-      const bool far_hit = slab(nodes_[far_child].lo, nodes_[far_child].hi, o, inv, a1, b1);
+      // A side whose interval is already empty (the ray leaves the node before the plane) is not loaded:
+      // in a big tree (the conference room's) its box is a cache miss.
+      const bool near_hit = a0 <= b0 && slab(nodes_[near_child].lo, nodes_[near_child].hi, o, inv, a0, b0);
+      const bool far_hit = a1 <= b1 && slab(nodes_[far_child].lo, nodes_[far_child].hi, o, inv, a1, b1);
       stack[top] = {far_child, a1, b1};
       top += near_hit & far_hit;
       if (near_hit | far_hit) {
