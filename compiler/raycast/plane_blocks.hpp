@@ -233,6 +233,9 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
     next[k] = d[k] == 0.0 ? INFINITY : (edges_[k][idx[k] + (d[k] > 0.0 ? 1 : 0)] - o[k]) * inv[k];
   }
 
+  // A point the walk places in a block lies in it up to rounding; the margin in t covers that (margin / |d|
+  // <= margin / max |d_k|).
+  const double slack = marked ? margin_ / std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])}) : 0.0;
   double t_enter = t0;
   for (;;) {
     const Block& b = blocks_[block_index(idx)];
@@ -244,9 +247,7 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
     }
     const double t_exit = std::min({next[0], next[1], next[2]});
     if (marked && b.mark != 0) {
-      // The ray's interval in the block's marked box. A point the walk places in this block lies in it up
-      // to rounding; the margin in t covers that (margin / |d| <= margin / max |d_k|).
-      const double slack = margin_ / std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])});
+      // The ray's interval in the block's marked box, widened by the slack.
       const MarkBox& m = marks_[b.mark - 1];
       double ta = t_enter - slack, tb = std::min(t_exit, limit) + slack;
       for (int k = 0; k < 3; ++k) {
