@@ -247,10 +247,12 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
     }
     const double t_exit = std::min({next[0], next[1], next[2]});
     if (marked && b.mark != 0) {
-      // The ray's interval in the block's marked box, widened by the slack.
+      // The ray's interval in the block's marked box, widened by the slack. An any-hit walk (not ordered)
+      // takes the whole block: there the box tests cost more than the BSP searches they saved (E1M1, DM1
+      // and house occlusion rays 4-6 % faster without them).
       const MarkBox& m = marks_[b.mark - 1];
       double ta = t_enter - slack, tb = std::min(t_exit, limit) + slack;
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < 3 && kOrdered; ++k) {
         if (d[k] == 0.0) {  // parallel: inside the box's slab throughout or never
           if (!(o[k] >= m.lo[k] && o[k] <= m.hi[k])) tb = -INFINITY;
           continue;
