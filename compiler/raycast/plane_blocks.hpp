@@ -62,8 +62,8 @@ struct PlaneBox {
   double u0, u1, v0, v1;
 };
 
-// The span of ray parameter over which a walk passed marked blocks (PlaneBlocks::mark), widened by the
-// blocks' margin: empty when it passed none.
+// The span of ray parameter over which a walk passed marked blocks (PlaneBlocks::mark), or their marked
+// boxes, widened by the blocks' margin: empty when it passed none.
 // `tags` are the distinct tags (PlaneBlocks::tag_marks) of the marked blocks passed, up to kSpanTags of
 // them; `tag_count` is kSpanTags + 1 when there were more.
 inline constexpr int kSpanTags = 4;
@@ -114,8 +114,9 @@ class PlaneBlocks {
   // once and its crossings visited in the same order; bigger blocks (the office's single block of 18) keep
   // the merge, which stops at the first hit, where testing every listing cost its primary rays 15-20 %.
   //
-  // `marked` (may be null) gathers the span of t over the marked blocks the walk passed: a ray can meet what
-  // was marked (the BSP's triangles) only there. It is complete only when the walk was not stopped by visit.
+  // `marked` (may be null) gathers the span of t over the marked blocks the walk passed (kOrdered: only
+  // where it passed their marked boxes) and their tags: a ray can meet what was marked (the BSP's
+  // triangles) only there. It is complete only when the walk was not stopped by visit.
   template <bool kOrdered, class Visit, class Prefetch>
   void walk(const model::Vec3& o, const model::Vec3& d, double tmin, const double& limit, Visit&& visit,
             Prefetch&& prefetch, MarkedSpan* marked = nullptr) const;
