@@ -1,8 +1,9 @@
 #pragma once
 // The paper's ray caster: axial polygons in sorted planes (AxialPlanes), the rest in a BSP tree (PolygonBsp)
-// searched only up to the axial hit, and only over the blocks holding its triangles that the walk passed
-// (none: no BSP search at all). When the BSP holds most of the model (a sculpted, non-axial mesh) the
-// order turns round: the BSP first, and the plane walk stops at its hit.
+// searched only up to the axial hit, only over the blocks holding its triangles that the walk passed
+// (closest hits: only where it passed the bounds of their parts in the block; none: no BSP search at all),
+// and from the node that encloses those parts rather than the root. When the BSP holds most of the model
+// (a sculpted, non-axial mesh) the order turns round: the BSP first, and the plane walk stops at its hit.
 #include "compiler/raycast/axial_planes.hpp"
 #include "compiler/raycast/polygon_bsp.hpp"
 
