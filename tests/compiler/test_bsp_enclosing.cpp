@@ -10,19 +10,13 @@
 
 #include "compiler/raycast/local_triangles.hpp"
 #include "compiler/raycast/polygon_bsp.hpp"
+#include "tests/compiler/test_ray_compare.hpp"
 
 namespace walk::compiler {
 namespace {
 
 using V = model::Vec3;
-
-V random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  V d;
-  do d = {g(rng), g(rng), g(rng)};
-  while (glm::length(d) < 1e-3);
-  return glm::normalize(d);
-}
+using testing::random_unit;
 
 // The planes x, y, z = 1, 2, 3: the root's axis split candidates (quarters of the bounds [0, 4]^3).
 constexpr double kQuarters[] = {1.0, 2.0, 3.0};
@@ -59,6 +53,19 @@ std::vector<Triangle> slanted_scene() {
   return tris;
 }
 
+// The scene in the local frame and a BSP over all of it (the tree reads the triangles during its searches).
+struct SlantedBsp {
+  std::vector<Triangle> tris = slanted_scene();
+  LocalTriangles local{tris};
+  PolygonBsp bsp{local, all_ids(tris.size())};
+
+  static std::vector<std::uint32_t> all_ids(std::size_t n) {
+    std::vector<std::uint32_t> ids(n);
+    for (std::uint32_t i = 0; i < n; ++i) ids[i] = i;
+    return ids;
+  }
+};
+
 struct Segment {
   V origin, dir;
   double tmin, tmax;
@@ -84,11 +91,8 @@ std::vector<Segment> segments_in(const V& lo, const V& hi, const LocalTriangles&
 }
 
 TEST(BspEnclosing, SearchFromTheEnclosingNodeFindsWhatTheRootSearchFinds) {
-  const auto tris = slanted_scene();
-  const LocalTriangles local(tris);
-  std::vector<std::uint32_t> ids(tris.size());
-  for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
-  const PolygonBsp bsp(local, ids);
+  const SlantedBsp scene;
+  const auto& [tris, local, bsp] = scene;
   ASSERT_GT(bsp.stats().axis_splits, 0u);
   ASSERT_GT(bsp.stats().depth, 4);
 
@@ -163,11 +167,8 @@ TEST(BspEnclosing, SearchFromTheEnclosingNodeFindsWhatTheRootSearchFinds) {
 }
 
 TEST(BspEnclosing, CommonAncestor) {
-  const auto tris = slanted_scene();
-  const LocalTriangles local(tris);
-  std::vector<std::uint32_t> ids(tris.size());
-  for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
-  const PolygonBsp bsp(local, ids);
+  const SlantedBsp scene;
+  const auto& [tris, local, bsp] = scene;
   const V c = local.centre;
   const std::uint32_t a = bsp.enclosing(V(0.1) - c, V(0.2) - c);
   const std::uint32_t b = bsp.enclosing(V(3.8) - c, V(3.9) - c);

@@ -14,6 +14,7 @@ namespace walk::compiler {
 namespace {
 
 using V = model::Vec3;
+using testing::random_unit;
 // Denser than the default, and with no limit from the plane count, so that rays meet many block edges in
 // these small models.
 constexpr BlockSizing kTestBlocks{.per_element = 0.3, .planes_per_layer = 0.0};
@@ -40,14 +41,6 @@ std::vector<Triangle> cube_lattice(int n, std::vector<double> at = {}) {
           tris.push_back({p(a, b), p(a + 1, b + 1), p(a, b + 1), polygon});
         }
   return tris;
-}
-
-V random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  V d;
-  do d = {g(rng), g(rng), g(rng)};
-  while (glm::length(d) < 1e-3);
-  return glm::normalize(d);
 }
 
 // Closest hits agree in polygon, or in t within the tie distance (two walls meeting on the ray's path); a
@@ -166,6 +159,19 @@ TEST(PlaneBlocks, FlatModelHasOneLayerAndStillFindsEveryTile) {
       expect_same(ours, reference, tris, {V(x, y, 0.0) + V(centre.x, centre.y, 7.0), V(0, 0, -1)}, tally);
 }
 
+// A point of `t` to aim at: its vertex a (kind 0), a point on its edge a-b (kind 1), or a point inside.
+V aim_point(const Triangle& t, int kind, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> w(0.0, 1.0);
+  double a = w(rng), b = w(rng);
+  if (kind == 0) a = b = 0.0;
+  if (kind == 1) b = 0.0;
+  if (a + b > 1.0) {
+    a = 1.0 - a;
+    b = 1.0 - b;
+  }
+  return t.a + a * (t.b - t.a) + b * (t.c - t.a);
+}
+
 // Small slanted triangles (BSP) scattered through an open box of axial tiles, one with a corner exactly on an
 // interior block corner; `outside` adds one beyond the tiles' bounds, which the blocks cannot place.
 std::vector<Triangle> box_with_slanted(const std::vector<double>& corner, bool outside) {
@@ -214,21 +220,14 @@ TEST(PlaneBlocks, BspSearchOverTheMarkedBlocksFindsEveryHit) {
       EXPECT_LT(stats.marked, blocks);
     }
     std::mt19937_64 rng(outside ? 31 : 30);
-    std::uniform_real_distribution<double> pos(0.05, 3.95), w(0.0, 1.0);
+    std::uniform_real_distribution<double> pos(0.05, 3.95);
     Tally tally;
     const std::size_t first_slanted = 6 * 8 * 8 * 2;
     for (std::size_t i = first_slanted; i < tris.size(); ++i) {
       const Triangle& t = tris[i];
       for (int j = 0; j < 40; ++j) {
         // Vertices, points on edges and inside, from anywhere in the box (and from beyond the outside one).
-        double a = w(rng), b = w(rng);
-        if (j % 4 == 0) a = b = 0.0;
-        if (j % 4 == 1) b = 0.0;
-        if (a + b > 1.0) {
-          a = 1.0 - a;
-          b = 1.0 - b;
-        }
-        const V target = t.a + a * (t.b - t.a) + b * (t.c - t.a);
+        const V target = aim_point(t, j % 4, rng);
         const V o = t.a.x > 5.0 ? V(8.0, pos(rng), pos(rng)) : V(pos(rng), pos(rng), pos(rng));
         expect_same(ours, reference, tris, {o, target - o}, tally);
         // Segments ending just short of the target and just past it (occlusion rays).
@@ -270,20 +269,13 @@ TEST(PlaneBlocks, MarkedBoxesOfTrianglesTouchingABlockFace) {
     ASSERT_EQ(ours.planes().blocks().edges(k).size(), probe.planes().blocks().edges(k).size());
   const BruteForceCaster reference(tris);
   std::mt19937_64 rng(41);
-  std::uniform_real_distribution<double> w(0.0, 1.0), off(0.05, 0.6);
+  std::uniform_real_distribution<double> off(0.05, 0.6);
   Tally tally;
   for (std::size_t i = first_slanted; i < tris.size(); ++i) {
     const Triangle& t = tris[i];
     for (int j = 0; j < 300; ++j) {
-      // The vertices, points on the edge a-b and inside, from the side x < x_edge (the neighbouring block).
-      double a = w(rng), b = w(rng);
-      if (j % 3 == 0) a = b = 0.0;
-      if (j % 3 == 1) b = 0.0;
-      if (a + b > 1.0) {
-        a = 1.0 - a;
-        b = 1.0 - b;
-      }
-      const V target = t.a + a * (t.b - t.a) + b * (t.c - t.a);
+      // The vertex a, points on the edge a-b and inside, from the side x < x_edge (the neighbouring block).
+      const V target = aim_point(t, j % 3, rng);
       const V o = target - V(off(rng), off(rng) - 0.3, off(rng) - 0.3);
       expect_same(ours, reference, tris, {o, target - o}, tally);
       expect_same(ours, reference, tris, {o, target - o, 0.0, 1.001}, tally);

@@ -2,6 +2,8 @@
 // Shared by the ray-casting tests: compare one caster's answers with a reference caster's on the same rays.
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,6 +20,15 @@ inline constexpr double kTieCheck = 1e-7;
 // within rounding, and a reference that rounds differently may see it pass on the other side (grazing rays
 // along a wall that meet the floor's edge, say). Such disagreements are counted apart, not failed.
 inline constexpr double kEdgeCheck = 1e-7;
+
+// A direction uniform on the unit sphere.
+inline model::Vec3 random_unit(std::mt19937_64& rng) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  model::Vec3 d;
+  do d = {g(rng), g(rng), g(rng)};
+  while (glm::length(d) < 1e-3);
+  return glm::normalize(d);
+}
 
 // An n x n grid of square tiles of side `size` in the plane z = `z` from the origin, two triangles per tile;
 // tile (i, j) is polygon i * n + j.
