@@ -242,9 +242,11 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
     const Block& b = blocks_[block_index(idx)];
     // Start loading what the block's listings test reads before the marked box is tested: the listings (a
     // crossing reads its items' range there) and the lanes' arrays.
-    if (b.end[2] != b.first) {
+    const bool listed = b.end[2] != b.first;
+    const bool gathered = listed && uses_lanes() && b.end[2] - b.first <= kGathered;
+    if (listed) {
       __builtin_prefetch(&entries_[b.first]);
-      if (uses_lanes() && b.end[2] - b.first <= kGathered) lanes_.prefetch(b.first);
+      if (gathered) lanes_.prefetch(b.first);
     }
     const double t_exit = std::min({next[0], next[1], next[2]});
     if (marked && b.mark != 0) {
@@ -253,24 +255,25 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
       // and house occlusion rays 4-6 % faster without them).
       const MarkBox& m = marks_[b.mark - 1];
       double ta = t_enter - slack, tb = std::min(t_exit, limit) + slack;
-      for (int k = 0; k < 3 && kOrdered; ++k) {
-        if (d[k] == 0.0) {  // parallel: inside the box's slab throughout or never
-          if (!(o[k] >= m.lo[k] && o[k] <= m.hi[k])) tb = -INFINITY;
-          continue;
+      if constexpr (kOrdered)
+        for (int k = 0; k < 3; ++k) {
+          if (d[k] == 0.0) {  // parallel: inside the box's slab throughout or never
+            if (!(o[k] >= m.lo[k] && o[k] <= m.hi[k])) tb = -INFINITY;
+            continue;
+          }
+          const double n = (m.lo[k] - o[k]) * inv[k], f = (m.hi[k] - o[k]) * inv[k];
+          ta = std::max(ta, std::min(n, f));
+          tb = std::min(tb, std::max(n, f));
         }
-        const double n = (m.lo[k] - o[k]) * inv[k], f = (m.hi[k] - o[k]) * inv[k];
-        ta = std::max(ta, std::min(n, f));
-        tb = std::min(tb, std::max(n, f));
-      }
       if (ta <= tb) {
         marked->add_tag(m.tag);
         marked->first = std::min(marked->first, ta - slack);
         marked->last = std::max(marked->last, tb + slack);
       }
     }
-    if (b.end[2] != b.first) {
+    if (listed) {
       prefetch(b.items_first, b.items_end);
-      if (uses_lanes() && b.end[2] - b.first <= kGathered) {
+      if (gathered) {
         // Every listing the ray crosses inside its bounds, gathered eight at a time (crossing_lanes.hpp),
         // then visited in increasing t: the merge's order, without its unpredictable branches.
         double ct[kGathered], cu[kGathered], cv[kGathered];

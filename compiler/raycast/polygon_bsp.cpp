@@ -189,20 +189,17 @@ std::uint32_t PolygonBsp::enclosing(const model::Vec3& lo, const model::Vec3& hi
   std::uint32_t node = 0;
   for (;;) {
     const Node& n = nodes_[node];
-    if (n.front == kNoHit && n.back == kNoHit) return node;
+    if (n.count > 0) return node;  // a leaf
     // The box's extent along the normal: its centre's distance, plus or minus its half extents projected.
     const double dist = glm::dot(n.normal, centre) - n.offset;
     const double reach = glm::dot(glm::abs(n.normal), half) + 1e-15 * std::abs(dist);
     // Beyond twice the tolerance: no triangle of the other side (all within kPlaneEps of it) reaches the box.
-    std::uint32_t side;
     if (dist - reach > 2.0 * kPlaneEps)
-      side = n.front;
+      node = n.front;
     else if (dist + reach < -2.0 * kPlaneEps)
-      side = n.back;
+      node = n.back;
     else
       return node;
-    if (side == kNoHit) return kNoHit;
-    node = side;
   }
 }
 

@@ -38,7 +38,7 @@ class PolygonBsp {
 
   // The deepest node whose region (the side of each split above it that it lies on) holds the whole box
   // [lo, hi] with room for the classification tolerance: a ray segment inside the box can meet only that
-  // node's triangles. kNoHit when no triangle can be there (the box lies on a side that holds none).
+  // node's triangles. kNoHit only for an empty tree (an inner node has both children).
   [[nodiscard]] std::uint32_t enclosing(const model::Vec3& lo, const model::Vec3& hi) const;
   // The deepest node with all of `nodes` in its subtree (their lowest common ancestor); kNoHit entries
   // (regions holding no triangle) are left out, and none at all gives kNoHit.
