@@ -36,6 +36,8 @@ __attribute__((target("avx512f,avx512vl,popcnt"))) int gather_crossings(const Cr
   const __m512i lane = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7);
   const __m512i end0 = _mm512_set1_epi64(end[0]), end1 = _mm512_set1_epi64(end[1]);
   const __m512i one = _mm512_set1_epi64(1);
+  // The zero-masked forms of the permutes, shift and narrowing below (all lanes kept): the plain ones start
+  // from an undefined register, which GCC 12 reports as maybe uninitialized.
   // The arrays' addresses in locals: the compress-stores may write anywhere, so the compiler would reload
   // them from the vectors and from `out` on every iteration.
   const double *coord = lanes.coord.data(), *u0 = lanes.u0.data(), *u1 = lanes.u1.data();
@@ -52,14 +54,16 @@ __attribute__((target("avx512f,avx512vl,popcnt"))) int gather_crossings(const Cr
     axis = _mm512_mask_add_epi64(axis, _mm512_cmpge_epu64_mask(index, end1), axis, one);
     const __mmask8 in_block = left >= 8 ? 0xFF : static_cast<__mmask8>((1u << left) - 1);
     // Lanes whose axis the ray moves along: bit `axis` of `moving`.
-    const __mmask8 live = static_cast<__mmask8>(
-        in_block & _mm512_test_epi64_mask(_mm512_sllv_epi64(one, axis), _mm512_set1_epi64(moving)));
-    const __m512d ok = _mm512_permutexvar_pd(axis, o_k), inv = _mm512_permutexvar_pd(axis, inv_k);
+    const __mmask8 live =
+        static_cast<__mmask8>(in_block & _mm512_test_epi64_mask(_mm512_maskz_sllv_epi64(0xFF, one, axis),
+                                                                _mm512_set1_epi64(moving)));
+    const __m512d ok = _mm512_maskz_permutexvar_pd(0xFF, axis, o_k),
+                  inv = _mm512_maskz_permutexvar_pd(0xFF, axis, inv_k);
     const __m512d t = _mm512_mul_pd(_mm512_sub_pd(_mm512_maskz_loadu_pd(live, coord + j), ok), inv);
-    const __m512d pu =
-        _mm512_add_pd(_mm512_permutexvar_pd(axis, o_u), _mm512_mul_pd(t, _mm512_permutexvar_pd(axis, d_u)));
-    const __m512d pv =
-        _mm512_add_pd(_mm512_permutexvar_pd(axis, o_v), _mm512_mul_pd(t, _mm512_permutexvar_pd(axis, d_v)));
+    const __m512d pu = _mm512_add_pd(_mm512_maskz_permutexvar_pd(0xFF, axis, o_u),
+                                     _mm512_mul_pd(t, _mm512_maskz_permutexvar_pd(0xFF, axis, d_u)));
+    const __m512d pv = _mm512_add_pd(_mm512_maskz_permutexvar_pd(0xFF, axis, o_v),
+                                     _mm512_mul_pd(t, _mm512_maskz_permutexvar_pd(0xFF, axis, d_v)));
     // Ordered comparisons: a NaN t or point fails every one, as in the scalar walk.
     __mmask8 m = _mm512_mask_cmp_pd_mask(live, t, t_enter, _CMP_GE_OQ);
     m = _mm512_mask_cmp_pd_mask(m, t, tmin, _CMP_GT_OQ);
@@ -73,7 +77,7 @@ __attribute__((target("avx512f,avx512vl,popcnt"))) int gather_crossings(const Cr
     _mm512_mask_compressstoreu_pd(out_t + n, m, t);
     _mm512_mask_compressstoreu_pd(out_u + n, m, pu);
     _mm512_mask_compressstoreu_pd(out_v + n, m, pv);
-    _mm256_mask_compressstoreu_epi32(out_index + n, m, _mm512_cvtepi64_epi32(index));
+    _mm256_mask_compressstoreu_epi32(out_index + n, m, _mm512_maskz_cvtepi64_epi32(0xFF, index));
     n += __builtin_popcount(m);
   }
   return n;
