@@ -206,8 +206,7 @@ void add_bench_rays_command(CLI::App& bench, int& exit_code) {
   rays->add_option(
           "--casters", opt->casters,
           "Comma-separated: axial, bvh, brute, embree; axial-scalar: axial without the AVX-512 listing "
-          "kernel; axial@B: axial with B blocks per element; axial#L: the kernel on blocks of up to L "
-          "listings")
+          "kernel; axial@B: axial with B blocks per element")
       ->capture_default_str();
   rays->add_option("--threads", opt->threads, "Comma-separated thread counts")->capture_default_str();
   rays->add_option("--rays", opt->rays, "Rays per set")->capture_default_str();
