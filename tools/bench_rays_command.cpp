@@ -71,14 +71,16 @@ std::string structure_detail(const RayCaster& c) {
   const auto& p = a->planes().stats();
   const auto& b = a->bsp().stats();
   const auto& k = a->planes().blocks().stats();
-  char buf[400];
+  char buf[512];
   std::snprintf(
       buf, sizeof buf,
       "axial %zu tris in %zu+%zu+%zu planes (%zu rects) over %zux%zux%zu blocks (%zu empty, %zu holding BSP "
-      "tris) with %zu listings (%s); bsp %zu tris %zu nodes (%zu axial splits) depth %d",
+      "tris) with %zu listings (%s, %zu blocks of %u-%u, mean free path %.1f m); bsp %zu tris %zu nodes (%zu "
+      "axial splits) depth %d",
       p.triangles, p.planes[0], p.planes[1], p.planes[2], p.rectangles, k.blocks[0], k.blocks[1], k.blocks[2],
       k.empty, k.marked, k.entries, a->planes().blocks().uses_lanes() ? "avx-512 lanes" : "scalar merge",
-      b.triangles, b.nodes, b.axis_splits, b.depth);
+      k.gathered_big, compiler::kGathered + 1, compiler::kGatheredMax, k.mean_free_path, b.triangles, b.nodes,
+      b.axis_splits, b.depth);
   return buf;
 }
 

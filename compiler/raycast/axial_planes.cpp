@@ -27,6 +27,7 @@ struct Raw {
 AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& taken,
                          const BlockSizing& sizing) {
   std::vector<Raw> raw[3];
+  double area = 0.0;  // of the surfaces taken, for the blocks' mean free path
   for (std::uint32_t i = 0; i < lt.triangles.size(); ++i) {
     const Triangle& t = lt.triangles[i];
     int k = -1;
@@ -39,6 +40,7 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
     const double pv[3] = {t.a[v], t.b[v], t.c[v]};
     const double area2 = (pu[1] - pu[0]) * (pv[2] - pv[0]) - (pv[1] - pv[0]) * (pu[2] - pu[0]);
     if (area2 == 0.0 || !std::isfinite(area2)) continue;  // degenerate: no ray can hit it
+    area += 0.5 * std::abs(area2);
     Raw r{};
     r.coord = t.a[k];
     r.triangle = i;
@@ -111,9 +113,9 @@ AxialPlanes::AxialPlanes(const LocalTriangles& lt, std::vector<std::uint8_t>& ta
   stats_.elements = elements.size();
   const auto target = std::max<std::size_t>(
       1, static_cast<std::size_t>(sizing.per_element * static_cast<double>(elements.size())));
-  blocks_ = PlaneBlocks(boxes, target, sizing.planes_per_layer, sizing.lanes);
+  blocks_ = PlaneBlocks(boxes, target, sizing.planes_per_layer, sizing.lanes, area);
   if (sizing.planes_per_layer > 0.0 && blocks_.stats().longest > kLongestListing)
-    blocks_ = PlaneBlocks(boxes, target, 0.0, sizing.lanes);
+    blocks_ = PlaneBlocks(boxes, target, 0.0, sizing.lanes, area);
   // Each block's elements copied in place: a crossing reads one contiguous run, with no index to chase (the
   // walk is bound by memory latency on big buildings).
   cell_elements_.reserve(blocks_.items().size());

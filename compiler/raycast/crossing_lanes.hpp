@@ -43,7 +43,10 @@ struct CrossingRay {
 // True when this CPU runs the AVX-512 kernel (AVX-512 F and VL).
 bool crossing_lanes_available();
 
-// Where gather_crossings writes: per crossing its t, its point in the plane and its listing's index.
+// Where gather_crossings writes: per crossing its t, its point in the plane and its listing's index. Each
+// array needs room for kCrossingSlack entries past the block's listing count: the kernel stores whole
+// vectors (compressed in registers) rather than branching on whether a group of eight crossed anything.
+inline constexpr std::uint32_t kCrossingSlack = 8;
 struct Crossings {
   double* t;
   double* pu;

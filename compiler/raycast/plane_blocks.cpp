@@ -52,7 +52,7 @@ bool part_bounds(std::vector<model::Vec3> poly, const model::Vec3& lo, const mod
 }  // namespace
 
 PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks, double planes_per_layer,
-                         bool lanes) {
+                         bool lanes, double area) {
   if (boxes.empty()) return;
   model::Vec3 lo(INFINITY), hi(-INFINITY);
   for (const PlaneBox& b : boxes) {
@@ -184,6 +184,21 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
   stats_.entries = entries_.size();
   if (lanes && crossing_lanes_available())
     for (const Entry& e : entries_) lanes_.push_back(e.coord, e.u0, e.u1, e.v0, e.v1);
+  // Rays cross a block more often than they end in it when its side is under the mean free path (see
+  // gathers_crossed_blocks); a thin axis' single layer does not count towards the side.
+  stats_.mean_free_path = area > 0.0 ? 4.0 * extent.x * extent.y * extent.z / area : 0.0;
+  double block_volume = 1.0;
+  int dims = 0;
+  for (int k = 0; k < 3; ++k)
+    if (!thin[k]) {
+      block_volume *= extent[k] / n_[k];
+      ++dims;
+    }
+  const double block_side = dims > 0 ? std::pow(block_volume, 1.0 / dims) : 0.0;
+  gather_crossed_ = uses_lanes() && block_side <= stats_.mean_free_path;
+  if (gather_crossed_)
+    for (const Block& b : blocks_)
+      if (b.end[2] - b.first > kGathered && b.end[2] - b.first <= kGatheredMax) ++stats_.gathered_big;
 }
 
 bool PlaneBlocks::mark(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c) {

@@ -31,6 +31,9 @@ inline constexpr int kPlaneV[3] = {2, 0, 1};
 inline constexpr double kBlockMargin = 1e-9;
 // Blocks with at most this many listings are tested all at once by the AVX-512 lanes (PlaneBlocks::walk).
 inline constexpr std::uint32_t kGathered = 16;
+// Blocks with up to this many listings are tested by the lanes too where rays usually cross a block rather
+// than end in it (PlaneBlocks::gathers_crossed_blocks); bigger ones always take the merge.
+inline constexpr std::uint32_t kGatheredMax = 64;
 
 // How finely the blocks cut space.
 struct BlockSizing {
@@ -89,14 +92,16 @@ class PlaneBlocks {
     std::size_t empty = 0;              // blocks with no plane
     std::size_t longest = 0;            // most elements in one listing
     std::size_t marked = 0;             // blocks marked (holding BSP triangles)
+    std::size_t gathered_big = 0;       // blocks of more than kGathered listings that the lanes test
+    double mean_free_path = 0.0;        // 4 V / S over the grid (see gathers_crossed_blocks)
   };
 
   PlaneBlocks() = default;
   // `boxes` grouped by (axis, plane), planes of each axis in increasing coordinate; about `target_blocks`
   // near-cubic blocks over their bounds, with at most one layer per `planes_per_layer` planes along each axis
-  // (0: no such limit).
+  // (0: no such limit). `area` is the total area of the surfaces the boxes bound (for the mean free path).
   PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blocks, double planes_per_layer,
-              bool lanes = true);
+              bool lanes = true, double area = 0.0);
 
   // Calls visit(axis, first, count, t, pu, pv) for each listed plane the ray crosses with tmin < t < limit,
   // where (pu, pv) is the crossing point in the plane's frame and lies within the bounds of the plane's
@@ -111,8 +116,9 @@ class PlaneBlocks {
   // occlusion rays 11-19 % faster); closest hits keep the merge, which stops at the first hit (the office,
   // one block of many planes, ran 7-40 % slower without it).
   // With lanes (BlockSizing::lanes, AVX-512), a block of at most kGathered listings is instead tested all at
-  // once and its crossings visited in the same order; bigger blocks (the office's single block of 18) keep
-  // the merge, which stops at the first hit, where testing every listing cost its primary rays 15-20 %.
+  // once and its crossings visited in the same order; so is a block of up to kGatheredMax listings when
+  // gathers_crossed_blocks(); other blocks (the office's single block of 18) keep the merge, which stops at
+  // the first hit, where testing every listing cost its primary rays 15-26 %.
   //
   // `marked` (may be null) gathers the span of t over the marked blocks the walk passed (kOrdered: only
   // where it passed their marked boxes) and their tags: a ray can meet what was marked (the BSP's
@@ -138,6 +144,14 @@ class PlaneBlocks {
   [[nodiscard]] const Stats& stats() const { return stats_; }
   // Whether the walk tests listings eight at a time (BlockSizing::lanes on a CPU with AVX-512).
   [[nodiscard]] bool uses_lanes() const { return !lanes_.coord.empty(); }
+  // Whether the lanes also take blocks of kGathered to kGatheredMax listings. The merge stops at the first
+  // hit, so it wins where rays usually end inside the block they are in; the lanes test every listing of a
+  // block at once, so they win where rays usually cross it. Which one a model's rays do is told by the mean
+  // free path, 4 V / S for surfaces of total area S in a volume V (Cauchy's mean chord length), against the
+  // blocks' side: the office's one block (28 m) is ten times its 2.9 m, and the lanes cost its closest hits
+  // 10-26 %; E1M1's blocks (5.4 m) are a third of its 15 m, and the lanes gained its rays from surfaces
+  // 12-13 % (walk bench rays, docs/RAYCAST.md "Session 9").
+  [[nodiscard]] bool gathers_crossed_blocks() const { return gather_crossed_; }
   // Element indices (PlaneBox::item) of every listing, block by block: each listing's elements are the ones
   // of its plane whose bounds reach the block, so a crossing tests only those (the plane's 2D grid).
   [[nodiscard]] const std::vector<std::uint32_t>& items() const { return items_; }
@@ -179,7 +193,8 @@ class PlaneBlocks {
   std::vector<MarkBox> marks_;
   CrossingLanes lanes_;  // entries_' coordinates and bounds as arrays; empty when not used
   std::vector<std::uint32_t> items_;
-  double margin_ = 0.0;  // kBlockMargin times the grid's diagonal
+  double margin_ = 0.0;          // kBlockMargin times the grid's diagonal
+  bool gather_crossed_ = false;  // see gathers_crossed_blocks()
   Stats stats_;
 };
 
@@ -243,7 +258,9 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
     // Start loading what the block's listings test reads before the marked box is tested: the listings (a
     // crossing reads its items' range there) and the lanes' arrays.
     const bool listed = b.end[2] != b.first;
-    const bool gathered = listed && uses_lanes() && b.end[2] - b.first <= kGathered;
+    const std::uint32_t listings = b.end[2] - b.first;
+    const bool gathered =
+        listed && uses_lanes() && (listings <= kGathered || (gather_crossed_ && listings <= kGatheredMax));
     if (listed) {
       __builtin_prefetch(&entries_[b.first]);
       if (gathered) lanes_.prefetch(b.first);
@@ -276,8 +293,9 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
       if (gathered) {
         // Every listing the ray crosses inside its bounds, gathered eight at a time (crossing_lanes.hpp),
         // then visited in increasing t: the merge's order, without its unpredictable branches.
-        double ct[kGathered], cu[kGathered], cv[kGathered];
-        std::uint32_t ci[kGathered];
+        double ct[kGatheredMax + kCrossingSlack], cu[kGatheredMax + kCrossingSlack],
+            cv[kGatheredMax + kCrossingSlack];
+        std::uint32_t ci[kGatheredMax + kCrossingSlack];
         const Crossings out{ct, cu, cv, ci};
         const int n =
             gather_crossings(lanes_, b.first, b.end, {o, d, inv, t_enter, tmin, t_exit, limit}, out);
