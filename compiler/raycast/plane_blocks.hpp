@@ -182,8 +182,9 @@ class PlaneBlocks {
   // Calls f(block index) for every block that the box [lo, hi] reaches within the margin.
   template <class F>
   void for_blocks_meeting(const model::Vec3& lo, const model::Vec3& hi, F&& f) const;
-  // The layer of blocks along axis k whose edges (in t, as the walk computes them) enclose t.
-  [[nodiscard]] int layer_at(int k, double ok, double dk, double inv, double t) const;
+  // The layer of blocks along axis k whose edges (in t, as the walk computes them) enclose t, searched from
+  // the layer holding coordinate `near` (any estimate of the ray's coordinate at t).
+  [[nodiscard]] int layer_at(int k, double ok, double dk, double inv, double t, double near) const;
 
   std::vector<double> edges_[3];  // n_[k] + 1 block edges along each axis
   int n_[3] = {0, 0, 0};
@@ -198,16 +199,16 @@ class PlaneBlocks {
   Stats stats_;
 };
 
-inline int PlaneBlocks::layer_at(int k, double ok, double dk, double inv, double t) const {
+[[gnu::always_inline]] inline int PlaneBlocks::layer_at(int k, double ok, double dk, double inv, double t,
+                                                        double near) const {
   const std::vector<double>& e = edges_[k];
   const int n = n_[k];
   if (dk == 0.0) {  // parallel to the layers: the origin's layer throughout
     const auto it = std::upper_bound(e.begin() + 1, e.end() - 1, ok);
     return static_cast<int>(it - (e.begin() + 1));
   }
-  const double p = ok + t * dk;
   int i = static_cast<int>(
-      std::clamp((p - e[0]) * per_metre_[k], 0.0, static_cast<double>(n - 1)));  // estimate, then
+      std::clamp((near - e[0]) * per_metre_[k], 0.0, static_cast<double>(n - 1)));  // estimate, then
   if (dk > 0.0) {  // settle on the layer the t formula agrees with
     while (i > 0 && (e[i] - ok) * inv > t) --i;
     while (i < n - 1 && (e[i + 1] - ok) * inv < t) ++i;
@@ -226,6 +227,12 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
   const double o[3] = {origin.x, origin.y, origin.z};
   const double d[3] = {dir.x, dir.y, dir.z};
   double inv[3] = {0.0, 0.0, 0.0};
+  // Where the first block is looked for: the ray's point at tmin, which for a ray starting inside the grid
+  // (t0 == tmin below, the usual case) lies in it. Computed without the divisions and the clip, so the
+  // first block's index, and the loads that follow, need not wait for them (the settling comparisons that
+  // do wait are predicted to hold): the clip's chain of divisions, minima and maxima was most of a ray's
+  // fixed cost.
+  double near[3] = {o[0] + tmin * d[0], o[1] + tmin * d[1], o[2] + tmin * d[2]};
   double t0 = tmin, t1 = limit;
   for (int k = 0; k < 3; ++k) {
     const std::vector<double>& e = edges_[k];
@@ -239,11 +246,13 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
     t1 = std::min(t1, std::max(ta, tb));
   }
   if (!(t0 <= t1)) return;
+  if (t0 != tmin)  // starting outside the grid: look from where the ray enters it
+    for (int k = 0; k < 3; ++k) near[k] = o[k] + t0 * d[k];
 
   int idx[3], step[3], stop[3];
   double next[3];  // t at which the ray leaves the current layer along each axis
   for (int k = 0; k < 3; ++k) {
-    idx[k] = layer_at(k, o[k], d[k], inv[k], t0);
+    idx[k] = layer_at(k, o[k], d[k], inv[k], t0, near[k]);
     step[k] = d[k] > 0.0 ? 1 : -1;
     stop[k] = d[k] > 0.0 ? n_[k] : -1;
     next[k] = d[k] == 0.0 ? INFINITY : (edges_[k][idx[k] + (d[k] > 0.0 ? 1 : 0)] - o[k]) * inv[k];
