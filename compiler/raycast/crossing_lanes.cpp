@@ -44,6 +44,8 @@ __attribute__((target("avx512f,avx512vl,popcnt"))) int gather_crossings(const Cr
   const double *v0 = lanes.v0.data(), *v1 = lanes.v1.data();
   double *out_t = out.t, *out_u = out.pu, *out_v = out.pv;
   std::uint32_t* out_index = out.index;
+  std::uint64_t* out_items = out.items;
+  const std::uint64_t* items = lanes.items.data();
   int n = 0;
   for (std::uint32_t j = first; j < end[2]; j += 8) {
     const std::uint32_t left = end[2] - j;
@@ -81,6 +83,8 @@ __attribute__((target("avx512f,avx512vl,popcnt"))) int gather_crossings(const Cr
     _mm512_storeu_pd(out_v + n, _mm512_maskz_compress_pd(m, pv));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out_index + n),
                         _mm256_maskz_compress_epi32(m, _mm512_maskz_cvtepi64_epi32(0xFF, index)));
+    _mm512_storeu_si512(out_items + n,
+                        _mm512_maskz_compress_epi64(m, _mm512_maskz_loadu_epi64(live, items + j)));
     n += __builtin_popcount(m);
   }
   return n;

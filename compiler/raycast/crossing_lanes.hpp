@@ -15,19 +15,27 @@
 namespace walk::compiler {
 
 // The listings' coordinates and in-plane bounds, one array each, so eight load at once.
+// Each listing's items too (first | count << 32), so that a crossing carries its range out of the kernel and
+// the walk can start loading the elements it will test without first reading the listing's record.
 struct CrossingLanes {
   std::vector<double> coord, u0, u1, v0, v1;
-  void push_back(double c, double a0, double a1, double b0, double b1) {
+  std::vector<std::uint64_t> items;
+  void push_back(double c, double a0, double a1, double b0, double b1, std::uint32_t first = 0,
+                 std::uint32_t count = 0) {
     coord.push_back(c);
     u0.push_back(a0);
     u1.push_back(a1);
     v0.push_back(b0);
     v1.push_back(b1);
+    items.push_back(first | static_cast<std::uint64_t>(count) << 32);
   }
-  [[nodiscard]] std::size_t memory_bytes() const { return 5 * coord.capacity() * sizeof(double); }
+  [[nodiscard]] std::size_t memory_bytes() const {
+    return 5 * coord.capacity() * sizeof(double) + items.capacity() * sizeof(std::uint64_t);
+  }
   // Starts loading the first line of each array from listing `first` on.
   void prefetch(std::uint32_t first) const {
     for (const auto* a : {&coord, &u0, &u1, &v0, &v1}) __builtin_prefetch(a->data() + first);
+    __builtin_prefetch(items.data() + first);
   }
 };
 
@@ -43,8 +51,8 @@ struct CrossingRay {
 // True when this CPU runs the AVX-512 kernel (AVX-512 F and VL).
 bool crossing_lanes_available();
 
-// Where gather_crossings writes: per crossing its t, its point in the plane and its listing's index. Each
-// array needs room for kCrossingSlack entries past the block's listing count: the kernel stores whole
+// Where gather_crossings writes: per crossing its t, its point in the plane, its listing's index and items.
+// Each array needs room for kCrossingSlack entries past the block's listing count: the kernel stores whole
 // vectors (compressed in registers) rather than branching on whether a group of eight crossed anything.
 inline constexpr std::uint32_t kCrossingSlack = 8;
 struct Crossings {
@@ -52,6 +60,7 @@ struct Crossings {
   double* pu;
   double* pv;
   std::uint32_t* index;
+  std::uint64_t* items;  // the listing's CrossingLanes::items
 };
 
 // Writes every listing of one block (axis k's are [end[k - 1], end[k]) with end[-1] = first) that the ray

@@ -298,16 +298,22 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
       }
     }
     if (listed) {
-      prefetch(b.items_first, b.items_end);
+      if (!gathered) prefetch(b.items_first, b.items_end);
       if (gathered) {
         // Every listing the ray crosses inside its bounds, gathered eight at a time (crossing_lanes.hpp),
         // then visited in increasing t: the merge's order, without its unpredictable branches.
         double ct[kGatheredMax + kCrossingSlack], cu[kGatheredMax + kCrossingSlack],
             cv[kGatheredMax + kCrossingSlack];
         std::uint32_t ci[kGatheredMax + kCrossingSlack];
-        const Crossings out{ct, cu, cv, ci};
+        std::uint64_t items[kGatheredMax + kCrossingSlack];
+        const Crossings out{ct, cu, cv, ci, items};
         const int n =
             gather_crossings(lanes_, b.first, b.end, {o, d, inv, t_enter, tmin, t_exit, limit}, out);
+        // The elements of the first crossings start loading now, not after each one's listing is read.
+        for (int c = 0; c < std::min(n, 4); ++c) {
+          const auto first = static_cast<std::uint32_t>(items[c]);
+          prefetch(first, first + static_cast<std::uint32_t>(items[c] >> 32));
+        }
         for (int done = 0; done < n; ++done) {
           int i = done;  // the next crossing: least t, the earlier listing on equal t (lower axis first)
           if constexpr (kOrdered) {
@@ -317,11 +323,14 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
             std::swap(cu[i], cu[done]);
             std::swap(cv[i], cv[done]);
             std::swap(ci[i], ci[done]);
+            std::swap(items[i], items[done]);
             i = done;
           }
           const std::uint32_t j = ci[i];
           const int k = j < b.end[0] ? 0 : j < b.end[1] ? 1 : 2;
-          if (visit(k, entries_[j].first, entries_[j].count, ct[i], cu[i], cv[i])) return;
+          if (visit(k, static_cast<std::uint32_t>(items[i]), static_cast<std::uint32_t>(items[i] >> 32),
+                    ct[i], cu[i], cv[i]))
+            return;
         }
       } else if constexpr (!kOrdered) {
         // Each axis' listings in increasing t (backwards when the ray runs down the axis), from the block's

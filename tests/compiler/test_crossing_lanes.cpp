@@ -62,7 +62,9 @@ TEST(CrossingLanes, KernelPicksExactlyTheScalarWalksListings) {
         if (kind == 5) v1 = pv;
         if (kind == 0 && n % 2 == 1) u0 = pu + 1e-3;  // just outside
         if (kind == 0 && n % 4 == 3) c = NAN;
-        lanes.push_back(c, u0, u1, v0, v1);
+        // Items distinct per listing, with a count in the high half, to check they come out with it.
+        const auto index = static_cast<std::uint32_t>(lanes.coord.size());
+        lanes.push_back(c, u0, u1, v0, v1, 1000 + 7 * index, index % 5 + 1);
       }
       end[k] = static_cast<std::uint32_t>(lanes.coord.size());
     }
@@ -71,10 +73,13 @@ TEST(CrossingLanes, KernelPicksExactlyTheScalarWalksListings) {
     constexpr std::uint32_t kRoom = kGatheredMax + kCrossingSlack;
     double ct[kRoom + 1], cu[kRoom + 1], cv[kRoom + 1];
     std::uint32_t ci[kRoom + 1];
+    std::uint64_t items[kRoom + 1];
     ct[kRoom] = cu[kRoom] = cv[kRoom] = -7.0;
     ci[kRoom] = 7;
-    const int n = gather_crossings(lanes, first, end, ray, {ct, cu, cv, ci});
-    ASSERT_TRUE(ct[kRoom] == -7.0 && cu[kRoom] == -7.0 && cv[kRoom] == -7.0 && ci[kRoom] == 7)
+    items[kRoom] = 7;
+    const int n = gather_crossings(lanes, first, end, ray, {ct, cu, cv, ci, items});
+    ASSERT_TRUE(ct[kRoom] == -7.0 && cu[kRoom] == -7.0 && cv[kRoom] == -7.0 && ci[kRoom] == 7 &&
+                items[kRoom] == 7)
         << "trial " << trial << ": the kernel wrote past the room it was promised";
     int want = 0;
     std::uint32_t lo = first;
@@ -84,6 +89,7 @@ TEST(CrossingLanes, KernelPicksExactlyTheScalarWalksListings) {
         if (d[k] == 0.0 || !scalar_crosses(lanes, j, k, ray, t)) continue;
         ASSERT_LT(want, n) << "trial " << trial << ": the kernel missed listing " << j;
         EXPECT_EQ(ci[want], j) << "trial " << trial;
+        EXPECT_EQ(items[want], lanes.items[j]) << "trial " << trial;
         EXPECT_EQ(ct[want], t) << "trial " << trial;  // bit-identical: same IEEE operations
         EXPECT_EQ(cu[want], ray.o[kPlaneU[k]] + t * ray.d[kPlaneU[k]]);
         on_bounds += (t == t_enter || t == t_exit || lanes.u0[j] == cu[want] || lanes.v1[j] == cv[want]);
