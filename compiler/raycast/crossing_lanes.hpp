@@ -32,10 +32,12 @@ struct CrossingLanes {
   [[nodiscard]] std::size_t memory_bytes() const {
     return 5 * coord.capacity() * sizeof(double) + items.capacity() * sizeof(std::uint64_t);
   }
-  // Starts loading the first line of each array from listing `first` on.
-  void prefetch(std::uint32_t first) const {
-    for (const auto* a : {&coord, &u0, &u1, &v0, &v1}) __builtin_prefetch(a->data() + first);
-    __builtin_prefetch(items.data() + first);
+  // Starts loading listings [first, end) of every array (a cache line holds eight).
+  void prefetch(std::uint32_t first, std::uint32_t end) const {
+    for (std::uint32_t j = first; j < end; j += 8) {
+      for (const auto* a : {&coord, &u0, &u1, &v0, &v1}) __builtin_prefetch(a->data() + j);
+      __builtin_prefetch(items.data() + j);
+    }
   }
 };
 

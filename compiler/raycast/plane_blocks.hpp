@@ -264,16 +264,16 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
   double t_enter = t0;
   for (;;) {
     const Block& b = blocks_[block_index(idx)];
-    // Start loading what the block's listings test reads before the marked box is tested: the listings (a
-    // crossing reads its items' range there) and the lanes' arrays.
+    // Start loading what the block's listings test reads before the marked box is tested: all of the lanes'
+    // arrays over the block's listings, or the first listings for the merge.
     const bool listed = b.end[2] != b.first;
     const std::uint32_t listings = b.end[2] - b.first;
     const bool gathered =
         listed && uses_lanes() && (listings <= kGathered || (gather_crossed_ && listings <= kGatheredMax));
-    if (listed) {
+    if (gathered)
+      lanes_.prefetch(b.first, b.end[2]);
+    else if (listed)
       __builtin_prefetch(&entries_[b.first]);
-      if (gathered) lanes_.prefetch(b.first);
-    }
     const double t_exit = std::min({next[0], next[1], next[2]});
     if (marked && b.mark != 0) {
       // The ray's interval in the block's marked box, widened by the slack. An any-hit walk (not ordered)
