@@ -195,10 +195,9 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
       ++dims;
     }
   const double block_side = dims > 0 ? std::pow(block_volume, 1.0 / dims) : 0.0;
-  gather_crossed_ = uses_lanes() && block_side <= stats_.mean_free_path;
-  if (gather_crossed_)
-    for (const Block& b : blocks_)
-      if (b.end[2] - b.first > kGathered && b.end[2] - b.first <= kGatheredMax) ++stats_.gathered_big;
+  most_gathered_ = !uses_lanes() ? 0 : block_side <= stats_.mean_free_path ? kGatheredMax : kGathered;
+  for (const Block& b : blocks_)
+    if (b.end[2] - b.first > kGathered && b.end[2] - b.first <= most_gathered_) ++stats_.gathered_big;
 }
 
 bool PlaneBlocks::mark(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c) {

@@ -151,7 +151,7 @@ class PlaneBlocks {
   // blocks' side: the office's one block (28 m) is ten times its 2.9 m, and the lanes cost its closest hits
   // 10-26 %; E1M1's blocks (5.4 m) are a third of its 15 m, and the lanes gained its rays from surfaces
   // 12-13 % (walk bench rays, docs/RAYCAST.md "Session 9").
-  [[nodiscard]] bool gathers_crossed_blocks() const { return gather_crossed_; }
+  [[nodiscard]] bool gathers_crossed_blocks() const { return most_gathered_ > kGathered; }
   // Element indices (PlaneBox::item) of every listing, block by block: each listing's elements are the ones
   // of its plane whose bounds reach the block, so a crossing tests only those (the plane's 2D grid).
   [[nodiscard]] const std::vector<std::uint32_t>& items() const { return items_; }
@@ -194,8 +194,10 @@ class PlaneBlocks {
   std::vector<MarkBox> marks_;
   CrossingLanes lanes_;  // entries_' coordinates and bounds as arrays; empty when not used
   std::vector<std::uint32_t> items_;
-  double margin_ = 0.0;          // kBlockMargin times the grid's diagonal
-  bool gather_crossed_ = false;  // see gathers_crossed_blocks()
+  double margin_ = 0.0;  // kBlockMargin times the grid's diagonal
+  // The most listings a block may have for the lanes to test it: kGathered, kGatheredMax where rays cross
+  // blocks (gathers_crossed_blocks), 0 without lanes.
+  std::uint32_t most_gathered_ = 0;
   Stats stats_;
 };
 
@@ -265,15 +267,16 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
   for (;;) {
     const Block& b = blocks_[block_index(idx)];
     // Start loading what the block's listings test reads before the marked box is tested: all of the lanes'
-    // arrays over the block's listings, or the first listings for the merge.
+    // arrays over the block's listings (the crossed listings' elements follow once the kernel has found
+    // them), or for the merge the first listings and the first lines of the block's elements.
     const bool listed = b.end[2] != b.first;
-    const std::uint32_t listings = b.end[2] - b.first;
-    const bool gathered =
-        listed && uses_lanes() && (listings <= kGathered || (gather_crossed_ && listings <= kGatheredMax));
-    if (gathered)
+    const bool gathered = listed && b.end[2] - b.first <= most_gathered_;
+    if (gathered) {
       lanes_.prefetch(b.first, b.end[2]);
-    else if (listed)
+    } else if (listed) {
       __builtin_prefetch(&entries_[b.first]);
+      prefetch(b.items_first, b.items_end);
+    }
     const double t_exit = std::min({next[0], next[1], next[2]});
     if (marked && b.mark != 0) {
       // The ray's interval in the block's marked box, widened by the slack. An any-hit walk (not ordered)
@@ -298,7 +301,6 @@ void PlaneBlocks::walk(const model::Vec3& origin, const model::Vec3& dir, double
       }
     }
     if (listed) {
-      if (!gathered) prefetch(b.items_first, b.items_end);
       if (gathered) {
         // Every listing the ray crosses inside its bounds, gathered eight at a time (crossing_lanes.hpp),
         // then visited in increasing t: the merge's order, without its unpredictable branches.
