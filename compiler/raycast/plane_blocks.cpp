@@ -185,7 +185,7 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
   if (lanes && crossing_lanes_available())
     for (const Entry& e : entries_) lanes_.push_back(e.coord, e.u0, e.u1, e.v0, e.v1, e.first, e.count);
   // Rays cross a block more often than they end in it when its side is under the mean free path (see
-  // gathers_crossed_blocks); a thin axis' single layer does not count towards the side.
+  // most_gathered_); a thin axis' single layer does not count towards the side.
   stats_.mean_free_path = area > 0.0 ? 4.0 * extent.x * extent.y * extent.z / area : 0.0;
   double block_volume = 1.0;
   int dims = 0;

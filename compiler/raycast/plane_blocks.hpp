@@ -32,7 +32,7 @@ inline constexpr double kBlockMargin = 1e-9;
 // Blocks with at most this many listings are tested all at once by the AVX-512 lanes (PlaneBlocks::walk).
 inline constexpr std::uint32_t kGathered = 16;
 // Blocks with up to this many listings are tested by the lanes too where rays usually cross a block rather
-// than end in it (PlaneBlocks::gathers_crossed_blocks); bigger ones always take the merge.
+// than end in it (PlaneBlocks::most_gathered_); bigger ones always take the merge.
 inline constexpr std::uint32_t kGatheredMax = 64;
 
 // How finely the blocks cut space.
@@ -93,7 +93,7 @@ class PlaneBlocks {
     std::size_t longest = 0;            // most elements in one listing
     std::size_t marked = 0;             // blocks marked (holding BSP triangles)
     std::size_t gathered_big = 0;       // blocks of more than kGathered listings that the lanes test
-    double mean_free_path = 0.0;        // 4 V / S over the grid (see gathers_crossed_blocks)
+    double mean_free_path = 0.0;        // 4 V / S over the grid (see most_gathered_)
   };
 
   PlaneBlocks() = default;
@@ -108,17 +108,18 @@ class PlaneBlocks {
   // elements in the block, which are items()[first, first + count); in increasing t when kOrdered, else block
   // by block front to back and axis by axis in increasing t within a block (a plane on a block edge
   // may come twice). `limit` may shrink during the walk (closest hit). visit returns true to stop.
-  // prefetch(first, end) is called on entering a block with listings, with the range of their items: the
-  // owner can start loading its elements while the walk reads the listings (two memory latencies overlap
-  // instead of adding up).
+  // prefetch(first, end) is called with ranges of items before the walk visits them, so that the owner can
+  // start loading its elements while the walk reads the listings (two memory latencies overlap instead of
+  // adding up): a merged block's whole range on entering it, a gathered block's first four crossed
+  // listings' as soon as the kernel has found them.
   // kOrdered false (any-hit queries, where order does not matter) walks each axis' listings on their own
   // instead of merging the three: the merge's branches cost more than they save there (E1M1 and DM1
   // occlusion rays 11-19 % faster); closest hits keep the merge, which stops at the first hit (the office,
   // one block of many planes, ran 7-40 % slower without it).
   // With lanes (BlockSizing::lanes, AVX-512), a block of at most kGathered listings is instead tested all at
-  // once and its crossings visited in the same order; so is a block of up to kGatheredMax listings when
-  // gathers_crossed_blocks(); other blocks (the office's single block of 18) keep the merge, which stops at
-  // the first hit, where testing every listing cost its primary rays 15-26 %.
+  // once and its crossings visited in the same order; so is a block of up to kGatheredMax listings where
+  // rays usually cross blocks (most_gathered_); other blocks (the office's single block of 18) keep the
+  // merge, which stops at the first hit, where testing every listing cost its primary rays 15-26 %.
   //
   // `marked` (may be null) gathers the span of t over the marked blocks the walk passed (kOrdered: only
   // where it passed their marked boxes) and their tags: a ray can meet what was marked (the BSP's
@@ -144,14 +145,6 @@ class PlaneBlocks {
   [[nodiscard]] const Stats& stats() const { return stats_; }
   // Whether the walk tests listings eight at a time (BlockSizing::lanes on a CPU with AVX-512).
   [[nodiscard]] bool uses_lanes() const { return !lanes_.coord.empty(); }
-  // Whether the lanes also take blocks of kGathered to kGatheredMax listings. The merge stops at the first
-  // hit, so it wins where rays usually end inside the block they are in; the lanes test every listing of a
-  // block at once, so they win where rays usually cross it. Which one a model's rays do is told by the mean
-  // free path, 4 V / S for surfaces of total area S in a volume V (Cauchy's mean chord length), against the
-  // blocks' side: the office's one block (28 m) is ten times its 2.9 m, and the lanes cost its closest hits
-  // 10-26 %; E1M1's blocks (5.4 m) are a third of its 15 m, and the lanes gained its rays from surfaces
-  // 12-13 % (walk bench rays, docs/RAYCAST.md "Session 9").
-  [[nodiscard]] bool gathers_crossed_blocks() const { return most_gathered_ > kGathered; }
   // Element indices (PlaneBox::item) of every listing, block by block: each listing's elements are the ones
   // of its plane whose bounds reach the block, so a crossing tests only those (the plane's 2D grid).
   [[nodiscard]] const std::vector<std::uint32_t>& items() const { return items_; }
@@ -195,8 +188,14 @@ class PlaneBlocks {
   CrossingLanes lanes_;  // entries_' coordinates and bounds as arrays; empty when not used
   std::vector<std::uint32_t> items_;
   double margin_ = 0.0;  // kBlockMargin times the grid's diagonal
-  // The most listings a block may have for the lanes to test it: kGathered, kGatheredMax where rays cross
-  // blocks (gathers_crossed_blocks), 0 without lanes.
+  // The most listings a block may have for the lanes to test it: 0 without lanes, else kGathered, or
+  // kGatheredMax where rays usually cross a block rather than end in it. The merge stops at the first hit, so
+  // it wins where rays end inside the block they are in; the lanes test every listing of a block at once, so
+  // they win where rays cross it. Which one a model's rays do is told by the mean free path, 4 V / S for
+  // surfaces of total area S in a volume V (Cauchy's mean chord length), against the blocks' side: the
+  // office's one block (28 m) is ten times its 2.9 m, and the lanes cost its closest hits 10-26 %; E1M1's
+  // blocks (5.4 m) are a third of its 15 m, and the lanes gained its rays from surfaces 12-13 % (walk bench
+  // rays, docs/RAYCAST.md "Session 9").
   std::uint32_t most_gathered_ = 0;
   Stats stats_;
 };
