@@ -203,7 +203,9 @@ void add_bench_rays_command(CLI::App& bench, int& exit_code) {
   auto* rays =
       bench.add_subcommand("rays", "Ray casting: ours vs Embree on primary, radiosity and occlusion rays");
   rays->add_option("--models", opt->models,
-                   "Comma-separated: house, office, tower, e1m1, dm1, conference, sibenik, cornell")
+                   "Comma-separated: house, office, tower, e1m1, dm1, conference, sibenik, cornell; NAME@G "
+                   "(house, office, e1m1, dm1): that model's radiosity patches on a G-metre grid, which the "
+                   "solver casts against")
       ->capture_default_str();
   rays->add_option(
           "--casters", opt->casters,

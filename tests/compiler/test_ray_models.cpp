@@ -2,6 +2,7 @@
 // same any-hit answer; the same model moved 1e6 m away gives the same answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -78,8 +79,38 @@ INSTANTIATE_TEST_SUITE_P(Shared, RayModels,
                          ::testing::Values(Case{"house", 1000000, 0}, Case{"office", 1000000, 0},
                                            Case{"cornell", 1000000, 0}, Case{"tower", 4000, 1000000},
                                            Case{"e1m1", 4000, 1000000}, Case{"dm1", 4000, 1000000},
-                                           Case{"sibenik", 2000, 1000000}, Case{"conference", 1000, 1000000}),
-                         [](const auto& info) { return std::string(info.param.model); });
+                                           Case{"sibenik", 2000, 1000000}, Case{"conference", 1000, 1000000},
+                                           // The radiosity patches the solver casts against: diced on the
+                                           // lighting grid, seams repaired (slivers, inserted vertices).
+                                           Case{"house@1", 200000, 0}, Case{"dm1@1", 2000, 1000000}),
+                         [](const auto& info) {
+                           std::string name(info.param.model);
+                           std::replace(name.begin(), name.end(), '@', '_');
+                           return name;
+                         });
+
+double area_of(const std::vector<Triangle>& tris) {
+  double sum = 0.0;
+  for (const auto& t : tris) sum += 0.5 * glm::length(glm::cross(t.b - t.a, t.c - t.a));
+  return sum;
+}
+
+// "NAME@G" dices the surfaces a ray can meet into patches: the same area in more triangles, each naming a
+// polygon of the model; a grid that is not a positive number, or a model without polygons, is an error.
+TEST(RayModelsDiced, PatchesCoverTheSameSurfaces) {
+  const auto whole = bench::load_ray_model("dm1", WALK_SHARED_DATA);
+  const auto diced = bench::load_ray_model("dm1@1", WALK_SHARED_DATA);
+  const auto finer = bench::load_ray_model("dm1@0.5", WALK_SHARED_DATA);
+  EXPECT_GT(diced.triangles.size(), 2 * whole.triangles.size());
+  EXPECT_GT(finer.triangles.size(), 2 * diced.triangles.size());
+  // Relative area: dicing only cuts triangles (1e-9 covers the rounding of 100k cut points).
+  constexpr double kAreaTolerance = 1e-9;
+  EXPECT_NEAR(area_of(diced.triangles) / area_of(whole.triangles), 1.0, kAreaTolerance);
+  EXPECT_NEAR(area_of(finer.triangles) / area_of(whole.triangles), 1.0, kAreaTolerance);
+  for (const auto& t : diced.triangles) ASSERT_LT(t.polygon, diced.polygons);
+  for (const char* bad : {"dm1@", "dm1@0", "dm1@-1", "dm1@1m", "dm1@nan", "tower@1", "nowhere@1"})
+    EXPECT_THROW((void)bench::load_ray_model(bad, WALK_SHARED_DATA), Error) << bad;
+}
 
 // The same building 1e6 m from the origin: the same polygons, the same distances.
 TEST(RayModelsFar, TranslatedByAMillionMetres) {
