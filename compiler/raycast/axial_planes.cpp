@@ -134,6 +134,7 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
       [&](int k, std::uint32_t first, std::uint32_t count, double t, double pu, double pv) {
         for (std::uint32_t c = first; c < first + count; ++c) {
           const Element& e = cell_elements_[c];
+          if (e.u0 > pu) break;  // the listing is in increasing u0: no later element reaches the point
           // One branch, not four: whether a point passes an element's bounds is unpredictable.
           if (!((pu >= e.u0) & (pu <= e.u1) & (pv >= e.v0) & (pv <= e.v1))) continue;
           bool inside = true;

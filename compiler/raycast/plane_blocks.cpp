@@ -167,7 +167,16 @@ PlaneBlocks::PlaneBlocks(std::span<const PlaneBox> boxes, std::size_t target_blo
   std::vector<std::uint32_t> order(listed.size());
   for (std::size_t j = 0; j < listed.size(); ++j) order[start[listed[j].block * 3 + axis_of[j]]++] = j;
   entries_.reserve(listed.size());
+  // A listing's items in increasing u0, so that a visit can stop at the first element starting beyond its
+  // point (a plane diced into patches lists rows of them). AxialPlanes::walk relies on this order.
+  std::vector<double> item_u0;
+  for (const PlaneBox& b : boxes) {
+    if (b.item >= item_u0.size()) item_u0.resize(b.item + 1, 0.0);
+    item_u0[b.item] = b.u0;
+  }
   for (const std::uint32_t j : order) {  // items laid out in entry order: a block's reads are close together
+    std::stable_sort(listed[j].items.begin(), listed[j].items.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return item_u0[a] < item_u0[b]; });
     Entry e = listed[j].entry;
     e.first = static_cast<std::uint32_t>(items_.size());
     e.count = static_cast<std::uint32_t>(listed[j].items.size());

@@ -146,7 +146,8 @@ class PlaneBlocks {
   // Whether the walk tests listings eight at a time (BlockSizing::lanes on a CPU with AVX-512).
   [[nodiscard]] bool uses_lanes() const { return !lanes_.coord.empty(); }
   // Element indices (PlaneBox::item) of every listing, block by block: each listing's elements are the ones
-  // of its plane whose bounds reach the block, so a crossing tests only those (the plane's 2D grid).
+  // of its plane whose bounds reach the block, so a crossing tests only those (the plane's 2D grid), in
+  // increasing PlaneBox::u0, so that a crossing can stop at the first one starting beyond its point.
   [[nodiscard]] const std::vector<std::uint32_t>& items() const { return items_; }
   [[nodiscard]] std::size_t memory_bytes() const;
   // Block edges along `axis`, in the owner's (local) frame: for tests that aim rays at them.
