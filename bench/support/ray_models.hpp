@@ -43,18 +43,24 @@ inline std::vector<compiler::Triangle> fan_polygons(const model::Model& m) {
   return out;
 }
 
-// The surfaces a ray can meet (not openings, not ignored faces), triangulated by the pipeline's mesher
-// (brush faces after CSG may be non-convex).
+// A surface a ray can meet: not an opening, not an ignored face.
+inline bool meets_rays(const model::Polygon& poly) {
+  return poly.role != model::Role::Opening && poly.role != model::Role::Ignored;
+}
+
+inline void append_triangles(std::vector<compiler::Triangle>& out, const compiler::PolygonMesh& mesh,
+                             std::uint32_t polygon) {
+  for (std::size_t i = 0; i + 2 < mesh.triangles.size(); i += 3)
+    out.push_back({mesh.vertices[mesh.triangles[i]], mesh.vertices[mesh.triangles[i + 1]],
+                   mesh.vertices[mesh.triangles[i + 2]], polygon});
+}
+
+// The surfaces a ray can meet, triangulated by the pipeline's mesher (brush faces after CSG may be
+// non-convex).
 inline std::vector<compiler::Triangle> mesh_polygons(const model::Model& m) {
   std::vector<compiler::Triangle> out;
-  for (std::uint32_t p = 0; p < m.polygons.size(); ++p) {
-    const auto& poly = m.polygons[p];
-    if (poly.role == model::Role::Opening || poly.role == model::Role::Ignored) continue;
-    const auto mesh = compiler::mesh_polygon(poly, 0.0);
-    for (std::size_t i = 0; i + 2 < mesh.triangles.size(); i += 3)
-      out.push_back({mesh.vertices[mesh.triangles[i]], mesh.vertices[mesh.triangles[i + 1]],
-                     mesh.vertices[mesh.triangles[i + 2]], p});
-  }
+  for (std::uint32_t p = 0; p < m.polygons.size(); ++p)
+    if (meets_rays(m.polygons[p])) append_triangles(out, compiler::mesh_polygon(m.polygons[p], 0.0), p);
   return out;
 }
 
@@ -74,24 +80,24 @@ inline std::vector<compiler::Triangle> read_obj(const std::string& path, double 
 inline std::vector<compiler::Triangle> diced_polygons(const model::Model& m, double grid) {
   std::vector<compiler::PolygonMesh> meshes;
   std::vector<std::uint32_t> ids;
-  for (std::uint32_t p = 0; p < m.polygons.size(); ++p) {
-    const auto& poly = m.polygons[p];
-    if (poly.role == model::Role::Opening || poly.role == model::Role::Ignored) continue;
-    meshes.push_back(compiler::mesh_polygon(poly, grid));
-    ids.push_back(p);
-  }
+  for (std::uint32_t p = 0; p < m.polygons.size(); ++p)
+    if (meets_rays(m.polygons[p])) {
+      meshes.push_back(compiler::mesh_polygon(m.polygons[p], grid));
+      ids.push_back(p);
+    }
   compiler::repair_t_junctions(meshes, compiler::kWeldRelative * glm::length(model::bounds_of(m).size()));
   std::vector<compiler::Triangle> out;
-  for (std::size_t i = 0; i < meshes.size(); ++i) {
-    const auto& mesh = meshes[i];
-    for (std::size_t j = 0; j + 2 < mesh.triangles.size(); j += 3)
-      out.push_back({mesh.vertices[mesh.triangles[j]], mesh.vertices[mesh.triangles[j + 1]],
-                     mesh.vertices[mesh.triangles[j + 2]], ids[i]});
-  }
+  for (std::size_t i = 0; i < meshes.size(); ++i) append_triangles(out, meshes[i], ids[i]);
   return out;
 }
 
-inline model::Model read_ray_model_polygons(const std::string& name, const std::string& data);
+// The polygons of a model read from files (the tower is generated as triangles and has none).
+inline model::Model read_ray_model_polygons(const std::string& name, const std::string& data) {
+  if (name == "house") return compiler::read_dxf(data + "/eplus-house-doors/house.dxf");
+  if (name == "office") return compiler::read_dxf(data + "/eplus-medium-office/refbldg_medium_office.dxf");
+  if (name == "e1m1" || name == "dm1") return compiler::read_map(data + "/quake-maps/" + name + ".map");
+  throw Error("ray model '" + name + "' has no polygons to dice (house, office, e1m1, dm1 have)");
+}
 
 // `data` is the shared data folder (WALK_SHARED_DATA). Throws walk::Error for an unknown name.
 // "NAME@G" (house, office, e1m1, dm1): that model's patches on a G-metre grid (diced_polygons).
@@ -110,15 +116,13 @@ inline RayModel load_ray_model(const std::string& name, const std::string& data)
     return r;
   }
   if (name == "house" || name == "office") {
-    const std::string path = name == "house" ? data + "/eplus-house-doors/house.dxf"
-                                             : data + "/eplus-medium-office/refbldg_medium_office.dxf";
-    const model::Model m = compiler::read_dxf(path);
+    const model::Model m = read_ray_model_polygons(name, data);
     r.triangles = fan_polygons(m);
     r.polygons = m.polygons.size();
   } else if (name == "tower") {
     r.triangles = office_tower({}, &r.polygons);
   } else if (name == "e1m1" || name == "dm1") {
-    const model::Model m = compiler::read_map(data + "/quake-maps/" + name + ".map");
+    const model::Model m = read_ray_model_polygons(name, data);
     r.triangles = mesh_polygons(m);
     r.polygons = m.polygons.size();
   } else if (name == "conference") {
@@ -132,14 +136,6 @@ inline RayModel load_ray_model(const std::string& name, const std::string& data)
                 "' (house, office, tower, e1m1, dm1, conference, sibenik, cornell, or NAME@G)");
   }
   return r;
-}
-
-// The polygons of a model read from files (the tower is generated as triangles and has none).
-inline model::Model read_ray_model_polygons(const std::string& name, const std::string& data) {
-  if (name == "house") return compiler::read_dxf(data + "/eplus-house-doors/house.dxf");
-  if (name == "office") return compiler::read_dxf(data + "/eplus-medium-office/refbldg_medium_office.dxf");
-  if (name == "e1m1" || name == "dm1") return compiler::read_map(data + "/quake-maps/" + name + ".map");
-  throw Error("ray model '" + name + "' has no polygons to dice (house, office, e1m1, dm1 have)");
 }
 
 }  // namespace walk::bench
