@@ -135,8 +135,9 @@ bool AxialPlanes::walk(const model::Vec3& o, const model::Vec3& d, double tmin, 
         for (std::uint32_t c = first; c < first + count; ++c) {
           const Element& e = cell_elements_[c];
           if (e.u0 > pu) break;  // the listing is in increasing u0: no later element reaches the point
-          // One branch, not four: whether a point passes an element's bounds is unpredictable.
-          if (!((pu >= e.u0) & (pu <= e.u1) & (pv >= e.v0) & (pv <= e.v1))) continue;
+          // So pu >= u0 here (a NaN pu fails the other tests). One branch, not three: whether a point passes
+          // an element's bounds is unpredictable.
+          if (!((pu <= e.u1) & (pv >= e.v0) & (pv <= e.v1))) continue;
           bool inside = true;
           for (std::uint32_t j = e.edge_first; j < e.edge_first + e.edge_count; ++j) {
             const EdgeLine& l = edges_[j];
