@@ -11,6 +11,10 @@ namespace walk::compiler {
 
 [[nodiscard]] bool embree_available();
 // Throws walk::Error when Embree is not compiled in or fails to build the scene.
-[[nodiscard]] std::unique_ptr<RayCaster> make_embree_caster(std::span<const Triangle> triangles);
+// `exact` ("embree-exact"): each hit Embree finds counts only where the ray meets the triangle's plane
+// within (tmin, tmax) in double, and reports that t, so the self-hit policy holds as in the double-precision
+// casters; plain Embree reports the surface a ray leaves (its float origin lies micrometres off it).
+[[nodiscard]] std::unique_ptr<RayCaster> make_embree_caster(std::span<const Triangle> triangles,
+                                                            bool exact = false);
 
 }  // namespace walk::compiler

@@ -69,7 +69,10 @@ model::Vec3 whole_metre_centre(std::span<const Triangle> triangles) {
 
 std::vector<std::string> ray_caster_names() {
   std::vector<std::string> names{"axial", "bvh", "brute"};
-  if (embree_available()) names.emplace_back("embree");
+  if (embree_available()) {
+    names.emplace_back("embree");
+    names.emplace_back("embree-exact");
+  }
   return names;
 }
 
@@ -77,10 +80,10 @@ std::unique_ptr<RayCaster> make_ray_caster(std::string_view name, std::span<cons
   if (name == "axial") return std::make_unique<AxialCaster>(triangles);
   if (name == "bvh") return std::make_unique<BvhCaster>(triangles);
   if (name == "brute") return std::make_unique<BruteForceCaster>(triangles);
-  if (name == "embree") {
+  if (name == "embree" || name == "embree-exact") {
     if (!embree_available())
-      throw Error("ray caster 'embree': this build has no Embree (WALK_WITH_EMBREE=OFF)");
-    return make_embree_caster(triangles);
+      throw Error("ray caster '" + std::string(name) + "': this build has no Embree (WALK_WITH_EMBREE=OFF)");
+    return make_embree_caster(triangles, name == "embree-exact");
   }
   std::string known;
   for (const auto& n : ray_caster_names()) known += (known.empty() ? "" : ", ") + n;

@@ -5,7 +5,11 @@
 //            of ray parameter with a 2D grid inside each plane, plus a BSP tree for the non-axial rest;
 //   "bvh"    the skeleton's median-split TriangleBvh;
 //   "brute"  every triangle, every ray: the reference the others are tested against;
-//   "embree" Intel Embree 3 (single precision), only when built with WALK_WITH_EMBREE.
+//   "embree" Intel Embree 3 (single precision), only when built with WALK_WITH_EMBREE: the speed reference.
+//            Its float origin lies micrometres off the surface a ray leaves, so it breaks the self-hit
+//            policy;
+//   "embree-exact" the same, each hit confirmed in double (the plane's t within (tmin, tmax)): it keeps the
+//            policy, and is the Embree to choose for lighting and visibility.
 //
 // Conventions shared by every backend:
 // - Input is triangles carrying the id of the polygon they came from; hits name both.
@@ -92,7 +96,7 @@ class RayCaster {
   void occluded_batch(std::span<const Ray> rays, std::span<std::uint8_t> occluded, unsigned threads) const;
 };
 
-// Names accepted by make_ray_caster in this build ("embree" only when compiled in).
+// Names accepted by make_ray_caster in this build ("embree" and "embree-exact" only when compiled in).
 [[nodiscard]] std::vector<std::string> ray_caster_names();
 // Builds the named structure over `triangles` (copied); throws walk::Error for an unknown name.
 [[nodiscard]] std::unique_ptr<RayCaster> make_ray_caster(std::string_view name,

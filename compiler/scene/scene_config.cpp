@@ -1,5 +1,7 @@
 #include "compiler/scene/scene_config.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <glm/geometric.hpp>
@@ -219,6 +221,18 @@ void read_circuits(const TomlTable& root, SceneConfig& cfg) {
   }
 }
 
+// Plain Embree breaks the self-hit policy (ray_caster.hpp): a scene that picks it for its rays is told so,
+// and compiles all the same.
+void warn_plain_embree(const SceneConfig& cfg, const std::string& caster, const char* table) {
+  if (caster == "embree")
+    spdlog::warn(
+        "{}: [{}] ray_caster = \"embree\": plain Embree meets the surface a ray leaves (its float origin "
+        "lies "
+        "micrometres off it), so light is lost to back faces and the PVS grows; \"embree-exact\" keeps the "
+        "self-hit policy",
+        cfg.path, table);
+}
+
 void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("lighting");
   if (!t) return;
@@ -252,6 +266,7 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
       t->fail("ray_caster", "unknown ray caster '" + *caster + "' (this build has: " + known + ")");
     }
     l.ray_caster = *caster;
+    warn_plain_embree(cfg, l.ray_caster, "lighting");
   }
   if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);
 }
@@ -300,6 +315,7 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
     if (std::find(names.begin(), names.end(), *caster) == names.end())
       t->fail("ray_caster", "unknown ray caster '" + *caster + "'");
     v.ray_caster = *caster;
+    warn_plain_embree(cfg, v.ray_caster, "visibility");
   }
 }
 

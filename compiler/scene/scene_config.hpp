@@ -49,7 +49,8 @@ struct LightingConfig {
   int samples_per_luminaire = 8;     // direct method: jittered points per area luminaire
   double rays_per_watt = 1000.0;     // radiosity: rays shot per watt of unshot power (accuracy knob)
   double residual = 0.01;            // radiosity: stop when unshot power < residual * emitted
-  std::string ray_caster = "axial";  // radiosity: "axial" (the paper's structure), "bvh", "embree" if built
+  std::string ray_caster = "axial";  // radiosity: "axial" (the paper's structure), "bvh", "embree-exact"
+                                     // or "embree" if built (ray_caster.hpp)
   double ambient = 0.02;             // W/m2 per unit albedo added at display time for light not simulated
   std::optional<double> exposure;    // W/m2 shown as white; automatic when absent
 };

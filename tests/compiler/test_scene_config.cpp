@@ -1,11 +1,15 @@
 // Scene config errors name the file, the line and the key.
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "compiler/raycast/embree_caster.hpp"
 #include "compiler/scene/scene_config.hpp"
 #include "model/error.hpp"
 
@@ -112,6 +116,35 @@ TEST_F(SceneConfigTest, ProofPairsAreACountOrNone) {
         error_of(std::string("[model]\nfile = \"a.dxf\"\n[visibility]\nproof_pairs = ") + bad + "\n");
     EXPECT_NE(e.find("visibility.proof_pairs"), std::string::npos) << bad << ": " << e;
   }
+}
+
+// A ray caster is checked against this build's; plain Embree is accepted with a warning naming the file,
+// since it breaks the self-hit policy, and embree-exact is not.
+TEST_F(SceneConfigTest, RayCastersAreCheckedAndPlainEmbreeIsWarnedOf) {
+  const std::string e = error_of("[model]\nfile = \"a.dxf\"\n[lighting]\nray_caster = \"optix\"\n");
+  EXPECT_NE(e.find("unknown ray caster 'optix'"), std::string::npos) << e;
+  if (!embree_available()) {
+    EXPECT_NE(error_of("[model]\nfile = \"a.dxf\"\n[visibility]\nray_caster = \"embree-exact\"\n")
+                  .find("unknown ray caster"),
+              std::string::npos);
+    return;
+  }
+  std::ostringstream log;
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("capture", std::make_shared<spdlog::sinks::ostream_sink_st>(log)));
+  for (const char* table : {"lighting", "visibility"}) {
+    for (const char* caster : {"embree-exact", "embree"}) {
+      log.str("");
+      write(std::string("[model]\nfile = \"a.dxf\"\n[") + table + "]\nray_caster = \"" + caster + "\"\n");
+      const SceneConfig c = load_scene_config(path_);
+      EXPECT_EQ(std::string(table) == "lighting" ? c.lighting.ray_caster : c.visibility.ray_caster, caster);
+      const bool warned = log.str().find("self-hit policy") != std::string::npos;
+      EXPECT_EQ(warned, std::string(caster) == "embree") << table << " " << caster << ": " << log.str();
+      if (warned) EXPECT_NE(log.str().find(path_), std::string::npos) << log.str();
+    }
+  }
+  spdlog::set_default_logger(previous);
 }
 
 TEST_F(SceneConfigTest, ShippedScenesLoad) {
