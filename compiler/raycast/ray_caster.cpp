@@ -80,11 +80,9 @@ std::unique_ptr<RayCaster> make_ray_caster(std::string_view name, std::span<cons
   if (name == "axial") return std::make_unique<AxialCaster>(triangles);
   if (name == "bvh") return std::make_unique<BvhCaster>(triangles);
   if (name == "brute") return std::make_unique<BruteForceCaster>(triangles);
-  if (name == "embree" || name == "embree-exact") {
-    if (!embree_available())
-      throw Error("ray caster '" + std::string(name) + "': this build has no Embree (WALK_WITH_EMBREE=OFF)");
+  // Without Embree compiled in, make_embree_caster throws the error that says so.
+  if (name == "embree" || name == "embree-exact")
     return make_embree_caster(triangles, name == "embree-exact");
-  }
   std::string known;
   for (const auto& n : ray_caster_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown ray caster '" + std::string(name) + "' (known: " + known + ")");

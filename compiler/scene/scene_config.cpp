@@ -221,15 +221,23 @@ void read_circuits(const TomlTable& root, SceneConfig& cfg) {
   }
 }
 
-// Plain Embree breaks the self-hit policy (ray_caster.hpp): a scene that picks it for its rays is told so,
-// and compiles all the same.
-void warn_plain_embree(const SceneConfig& cfg, const std::string& caster, const char* table) {
+// `[table] ray_caster`, when given, into `caster`: one of this build's casters. Plain Embree breaks the
+// self-hit policy (ray_caster.hpp): a scene that picks it for its rays is told so, and compiles all the same.
+void read_ray_caster(const TomlTable& t, const SceneConfig& cfg, const char* table, std::string& caster) {
+  const auto name = t.string("ray_caster");
+  if (!name) return;
+  const auto names = ray_caster_names();
+  if (std::find(names.begin(), names.end(), *name) == names.end()) {
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+    t.fail("ray_caster", "unknown ray caster '" + *name + "' (this build has: " + known + ")");
+  }
+  caster = *name;
   if (caster == "embree")
     spdlog::warn(
         "{}: [{}] ray_caster = \"embree\": plain Embree meets the surface a ray leaves (its float origin "
-        "lies "
-        "micrometres off it), so light is lost to back faces and the PVS grows; \"embree-exact\" keeps the "
-        "self-hit policy",
+        "lies micrometres off it), so light is lost to back faces and the PVS grows; \"embree-exact\" "
+        "keeps the self-hit policy",
         cfg.path, table);
 }
 
@@ -258,16 +266,7 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   if (l.residual >= 1.0) t->fail("residual", "must be below 1 (a fraction of the emitted power)");
   l.ambient = t->number("ambient").value_or(l.ambient);
   if (l.ambient < 0.0) t->fail("ambient", "must not be negative");
-  if (const auto caster = t->string("ray_caster")) {
-    const auto names = ray_caster_names();
-    if (std::find(names.begin(), names.end(), *caster) == names.end()) {
-      std::string known;
-      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-      t->fail("ray_caster", "unknown ray caster '" + *caster + "' (this build has: " + known + ")");
-    }
-    l.ray_caster = *caster;
-    warn_plain_embree(cfg, l.ray_caster, "lighting");
-  }
+  read_ray_caster(*t, cfg, "lighting", l.ray_caster);
   if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);
 }
 
@@ -310,13 +309,7 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
     if (*b < 1) t->fail("flow_budget", "must be at least 1");
     v.flow_budget = static_cast<std::uint64_t>(*b);
   }
-  if (const auto caster = t->string("ray_caster")) {
-    const auto names = ray_caster_names();
-    if (std::find(names.begin(), names.end(), *caster) == names.end())
-      t->fail("ray_caster", "unknown ray caster '" + *caster + "'");
-    v.ray_caster = *caster;
-    warn_plain_embree(cfg, v.ray_caster, "visibility");
-  }
+  read_ray_caster(*t, cfg, "visibility", v.ray_caster);
 }
 
 }  // namespace
