@@ -65,8 +65,7 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene =
-      importer.ReadFile(path, aiProcess_PreTransformVertices | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_ValidateDataStructure);
+      importer.ReadFile(path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
   if (!scene || !scene->mRootNode)
     throw Error(located(path, 0, std::string("assimp cannot read the file: ") + importer.GetErrorString(),
                         "check the format and that the file is complete (OBJ also needs its .mtl)"));
@@ -89,70 +88,94 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
     emission[i] = {std::max(0.f, ke.r), std::max(0.f, ke.g), std::max(0.f, ke.b)};
     ++stats.materials;
   }
-  const auto convert = [&](const aiVector3D& a) {
-    const Vec3 p(a.x, a.y, a.z);
-    return (options.y_up ? Vec3(p.x, -p.z, p.y) : p) * options.unit_scale;
+  // Meshes are placed by walking the node tree (assimp's PreTransformVertices would do it, but it joins
+  // every mesh of one material into one and so loses the groups, which name the rooms).
+  struct Placement {
+    const aiNode* node;
+    aiMatrix4x4 transform;
   };
+  std::vector<Placement> placements;
+  std::vector<Placement> stack{{scene->mRootNode, scene->mRootNode->mTransformation}};
+  while (!stack.empty()) {
+    const Placement at = stack.back();
+    stack.pop_back();
+    placements.push_back(at);
+    for (unsigned c = at.node->mNumChildren; c-- > 0;)  // reversed: the file's order comes off the stack
+      stack.push_back({at.node->mChildren[c], at.transform * at.node->mChildren[c]->mTransformation});
+  }
   std::map<unsigned, std::uint32_t> circuits;  // emissive material -> circuit
   std::vector<Lamp> lamps;
-  for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
-    const aiMesh* mesh = scene->mMeshes[mi];
-    ++stats.meshes;
-    stats.vertices += mesh->mNumVertices;
-    const std::string group = mesh->mName.length ? mesh->mName.C_Str() : "mesh" + std::to_string(mi);
-    const std::uint32_t g = model.group_index(group);
-    const unsigned mat = mesh->mMaterialIndex;
-    const bool emissive =
-        mat < emission.size() && std::max({emission[mat].r, emission[mat].g, emission[mat].b}) > 0;
-    const std::size_t first_lamp = lamps.size();
-    for (unsigned fi = 0; fi < mesh->mNumFaces; ++fi) {
-      const aiFace& f = mesh->mFaces[fi];
-      if (f.mNumIndices < 3) {
-        ++stats.skipped_primitives;
-        continue;
-      }
-      model::Polygon p;
-      for (unsigned k = 0; k < f.mNumIndices; ++k)
-        p.vertices.push_back(convert(mesh->mVertices[f.mIndices[k]]));
-      p.group = g;
-      p.material = mat < material_index.size() ? material_index[mat] : 0;
-      p.name = model.materials[p.material].name;
-      p.source_line = fi + 1;  // face number within its mesh: assimp keeps no line numbers
-      if (emissive) {
-        p.role = model::Role::Luminaire;
-        ++stats.emissive_faces;
-        const Vec3 n2 = model::area_vector(p.vertices);
-        const double twice = glm::length(n2);
-        if (twice > 0.0) {
-          const Vec3 n = n2 / twice;
-          const double offset = glm::dot(n, p.vertices[0]);
-          Lamp* lamp = nullptr;
-          for (std::size_t k = first_lamp; k < lamps.size(); ++k)
-            if (glm::dot(lamps[k].normal, n) > kSameNormalCosine &&
-                std::abs(lamps[k].offset - offset) < kSamePlaneDistance)
-              lamp = &lamps[k];
-          if (!lamp) {
-            auto [it, added] = circuits.emplace(mat, static_cast<std::uint32_t>(model.circuits.size()));
-            if (added) model.circuits.push_back({"emissive " + model.materials[p.material].name, 1.0});
-            lamps.push_back(
-                {n,
-                 offset,
-                 {},
-                 0.0,
-                 emission[mat],
-                 it->second,
-                 group + "/" + model.materials[p.material].name + "#" + std::to_string(lamps.size())});
-            lamp = &lamps.back();
-          }
-          lamp->points.insert(lamp->points.end(), p.vertices.begin(), p.vertices.end());
-          lamp->area += 0.5 * twice;
+  for (const Placement& at : placements)
+    for (unsigned nm = 0; nm < at.node->mNumMeshes; ++nm) {
+      const unsigned mi = at.node->mMeshes[nm];
+      const aiMesh* mesh = scene->mMeshes[mi];
+      const aiMatrix4x4& m = at.transform;
+      const bool mirrored = m.Determinant() < 0;  // a mirroring transform turns the faces inside out
+      const auto convert = [&](const aiVector3D& local) {
+        const aiVector3D a = m * local;
+        const Vec3 p(a.x, a.y, a.z);
+        return (options.y_up ? Vec3(p.x, -p.z, p.y) : p) * options.unit_scale;
+      };
+      ++stats.meshes;
+      stats.vertices += mesh->mNumVertices;
+      // The group: the node (an OBJ object or group, a glTF node) that holds the mesh; the mesh's own name
+      // where the node has none (assimp names OBJ meshes after their material when one group has several).
+      std::string group = at.node != scene->mRootNode && at.node->mName.length ? at.node->mName.C_Str() : "";
+      if (group.empty()) group = mesh->mName.length ? mesh->mName.C_Str() : "mesh" + std::to_string(mi);
+      const std::uint32_t g = model.group_index(group);
+      const unsigned mat = mesh->mMaterialIndex;
+      const bool emissive =
+          mat < emission.size() && std::max({emission[mat].r, emission[mat].g, emission[mat].b}) > 0;
+      const std::size_t first_lamp = lamps.size();
+      for (unsigned fi = 0; fi < mesh->mNumFaces; ++fi) {
+        const aiFace& f = mesh->mFaces[fi];
+        if (f.mNumIndices < 3) {
+          ++stats.skipped_primitives;
+          continue;
         }
+        model::Polygon p;
+        for (unsigned k = 0; k < f.mNumIndices; ++k)
+          p.vertices.push_back(convert(mesh->mVertices[f.mIndices[k]]));
+        if (mirrored) std::reverse(p.vertices.begin(), p.vertices.end());
+        p.group = g;
+        p.material = mat < material_index.size() ? material_index[mat] : 0;
+        p.name = model.materials[p.material].name;
+        p.source_line = fi + 1;  // face number within its mesh: assimp keeps no line numbers
+        if (emissive) {
+          p.role = model::Role::Luminaire;
+          ++stats.emissive_faces;
+          const Vec3 n2 = model::area_vector(p.vertices);
+          const double twice = glm::length(n2);
+          if (twice > 0.0) {
+            const Vec3 n = n2 / twice;
+            const double offset = glm::dot(n, p.vertices[0]);
+            Lamp* lamp = nullptr;
+            for (std::size_t k = first_lamp; k < lamps.size(); ++k)
+              if (glm::dot(lamps[k].normal, n) > kSameNormalCosine &&
+                  std::abs(lamps[k].offset - offset) < kSamePlaneDistance)
+                lamp = &lamps[k];
+            if (!lamp) {
+              auto [it, added] = circuits.emplace(mat, static_cast<std::uint32_t>(model.circuits.size()));
+              if (added) model.circuits.push_back({"emissive " + model.materials[p.material].name, 1.0});
+              lamps.push_back(
+                  {n,
+                   offset,
+                   {},
+                   0.0,
+                   emission[mat],
+                   it->second,
+                   group + "/" + model.materials[p.material].name + "#" + std::to_string(lamps.size())});
+              lamp = &lamps.back();
+            }
+            lamp->points.insert(lamp->points.end(), p.vertices.begin(), p.vertices.end());
+            lamp->area += 0.5 * twice;
+          }
+        }
+        if (p.vertices.size() == 3) ++stats.triangles;
+        model.polygons.push_back(std::move(p));
+        ++stats.faces;
       }
-      if (p.vertices.size() == 3) ++stats.triangles;
-      model.polygons.push_back(std::move(p));
-      ++stats.faces;
     }
-  }
   for (const Lamp& lamp : lamps) model.luminaires.push_back(lamp_luminaire(lamp, options.emission_scale));
   stats.luminaires = lamps.size();
   if (model.polygons.empty())
