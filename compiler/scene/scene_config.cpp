@@ -3,8 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <glm/geometric.hpp>
+#include <numbers>
 
 #include "compiler/raycast/ray_caster.hpp"
 #include "compiler/scene/toml_access.hpp"
@@ -314,12 +316,27 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
 
 }  // namespace
 
+void read_start(const TomlTable& root, SceneConfig& cfg) {
+  const auto t = root.table("start");
+  if (!t) return;
+  t->only({"position", "heading_deg"});
+  const auto pos = t->numbers("position", 3);
+  if (!pos) t->fail("position", "missing: give [x, y, z] of a point on a floor, in model units");
+  StartPoint s;
+  s.position = model::Vec3((*pos)[0], (*pos)[1], (*pos)[2]) * cfg.metres_per_unit;
+  s.heading = t->number("heading_deg").value_or(0.0) * std::numbers::pi / 180.0;
+  if (!std::isfinite(s.heading) || !std::isfinite(s.position.x + s.position.y + s.position.z))
+    t->fail("position", "must be finite");
+  cfg.start = s;
+}
+
 SceneConfig load_scene_config(const std::string& path) {
   SceneConfig cfg;
   cfg.path = path;
   const toml::table root_table = parse_toml_file(path, &cfg.text);
   const TomlTable root(root_table, path, "");
-  root.only({"model", "plan", "rules", "materials", "luminaires", "circuits", "lighting", "visibility"});
+  root.only(
+      {"model", "plan", "rules", "materials", "luminaires", "circuits", "lighting", "visibility", "start"});
   read_model(root, cfg);
   read_plan(root, cfg);
   read_rules(root, cfg);
@@ -328,6 +345,7 @@ SceneConfig load_scene_config(const std::string& path) {
   read_circuits(root, cfg);
   read_lighting(root, cfg);
   read_visibility(root, cfg);
+  read_start(root, cfg);
   return cfg;
 }
 

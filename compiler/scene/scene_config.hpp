@@ -55,6 +55,12 @@ struct LightingConfig {
   std::optional<double> exposure;    // W/m2 shown as white; automatic when absent
 };
 
+// Where a walk through the scene begins: a point on a floor (world metres) and the direction faced.
+struct StartPoint {
+  model::Vec3 position{0.0};
+  double heading = 0.0;  // radians, 0 = +x, counter-clockwise seen from above
+};
+
 struct SceneConfig {
   std::string path;        // the config file itself
   std::string model_file;  // absolute, resolved against the config's folder
@@ -73,8 +79,9 @@ struct SceneConfig {
   std::vector<std::string> luminaire_circuits;  // circuit name of each explicit luminaire
   std::vector<CircuitRule> circuits;
   LightingConfig lighting;
-  VisibilityConfig visibility;  // [visibility]: cells, portals, PVS
-  std::string text;             // the file's bytes, part of the scene hash
+  VisibilityConfig visibility;      // [visibility]: cells, portals, PVS
+  std::optional<StartPoint> start;  // [start]: where a walk begins, when the scene says
+  std::string text;                 // the file's bytes, part of the scene hash
 };
 
 // Throws walk::Error naming the file, the line and the key for any problem.

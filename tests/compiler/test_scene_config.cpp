@@ -3,6 +3,7 @@
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -36,6 +37,24 @@ class SceneConfigTest : public ::testing::Test {
   void TearDown() override { fs::remove(path_); }
   std::string path_;
 };
+
+TEST_F(SceneConfigTest, StartIsInModelUnitsAndOptional) {
+  const auto none = load_scene_config(write("[model]\nfile = \"a.dxf\"\nunits = \"m\"\n"));
+  EXPECT_FALSE(none.start.has_value());
+  const auto cfg =
+      load_scene_config(write("[model]\nfile = \"a.obj\"\nunits = \"mm\"\n[start]\nposition = [1000, -500, "
+                              "2600]\nheading_deg = 90\n"));
+  ASSERT_TRUE(cfg.start.has_value());
+  EXPECT_NEAR(cfg.start->position.x, 1.0, 1e-12);
+  EXPECT_NEAR(cfg.start->position.y, -0.5, 1e-12);
+  EXPECT_NEAR(cfg.start->position.z, 2.6, 1e-12);
+  EXPECT_NEAR(cfg.start->heading, std::acos(0.0), 1e-12);
+  const std::string missing = error_of("[model]\nfile = \"a.obj\"\n[start]\nheading_deg = 90\n");
+  EXPECT_NE(missing.find("start.position"), std::string::npos) << missing;
+  const std::string typo =
+      error_of("[model]\nfile = \"a.obj\"\n[start]\nposition = [0, 0, 0]\nheading = 1\n");
+  EXPECT_NE(typo.find("start.heading"), std::string::npos) << typo;
+}
 
 TEST_F(SceneConfigTest, UnknownUnitNamesKeyLineAndKnownUnits) {
   const std::string e = error_of("[model]\nfile = \"a.dxf\"\nunits = \"furlong\"\n");
