@@ -59,5 +59,15 @@ size=$(stat -c %s "$tmp/good.walk")
 printf '\x5a' | dd of="$tmp/good.walk" bs=1 seek=$((size / 2)) conv=notrunc status=none
 check "flipped byte" "" "good.walk" "corrupt bundle" -- "$walk" inspect "$tmp/good.walk"
 
+# `walk gen building` on bad options: a clear error naming the option, and no scene folder written.
+data="$src/../shared/data"
+check "gen: unknown plan" "$tmp/g1" "--plan" "castle" "known: apartment" -- \
+  "$walk" gen building -o "$tmp/g1" --plan castle --data "$data"
+check "gen: zero storeys" "$tmp/g2" "--storeys" "at least 1" -- "$walk" gen building -o "$tmp/g2" --storeys 0 --data "$data"
+check "gen: density that cannot fit" "$tmp/g3" "--furnish" "objects per square metre" -- \
+  "$walk" gen building -o "$tmp/g3" --furnish 8 --data "$data"
+check "gen: unknown preset" "$tmp/g4" "--size" "XL" -- "$walk" gen building -o "$tmp/g4" --size XL --data "$data"
+check "gen: missing data" "$tmp/g5" "floorplan.dxf" "--data" -- "$walk" gen building -o "$tmp/g5" --data "$tmp/nowhere"
+
 echo "$passed passed, $failures failed"
 [ $failures -eq 0 ]

@@ -1,0 +1,596 @@
+#include "tools/gen/building.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <map>
+#include <numeric>
+#include <polyclipping/clipper.hpp>
+
+#include "compiler/geometry/clipper_convert.hpp"
+#include "compiler/radiosity/sampling.hpp"
+#include "model/error.hpp"
+
+namespace walk::gen {
+namespace {
+
+using glm::dvec2;
+using model::Vec3;
+using Loop2 = std::vector<dvec2>;
+
+// The corridor between the two units and the lobbies at its ends, metres.
+constexpr double kCorridorWidth = 1.8;
+constexpr double kLobbyReach = 3.0;  // how far the lobbies reach past the corridor's sides
+constexpr double kStairLobby = 4.4;  // south lobby, along the corridor: two stair lanes and a landing
+constexpr double kLiftLobby = 3.8;   // north lobby: the lift shaft and room to walk past it
+// The stair: risers near 19 cm (comfortable, and under the walker's 35 cm step), 25 cm treads, 1 m lanes.
+constexpr double kTargetRiser = 0.19, kTread = 0.25, kStairWidth = 1.0;
+// The lift shaft: outer side, wall thickness, and its door on each storey.
+constexpr double kShaftSide = 2.4, kShaftWall = 0.2, kLiftDoorWidth = 1.0, kLiftDoorHeight = 2.1;
+// Furniture stands this far from walls and from each other, and keeps doorways this clear, metres.
+constexpr double kWallClearance = 0.05, kObjectGap = 0.05, kDoorClearance = 0.6;
+// A room is furnished up to this fraction of its floor in footprints; denser asks cannot fit.
+constexpr double kMaxCoverage = 0.5;
+// Random positions tried for each object and shape before the room is declared full.
+constexpr int kPlacementTries = 400;
+// Ceiling panels: below the ceiling by this much, the size and radiant watts of a room's panel, and the
+// spacing and watts of the corridor's.
+constexpr double kPanelDrop = 0.02, kPanelSize = 0.6, kRoomPanelWatts = 40.0;
+constexpr double kCorridorPanelSpacing = 3.0, kCorridorPanelWatts = 20.0;
+// The compiler's SplitMix64 stream: the same numbers on every platform and standard library (std's
+// distributions do not promise that), so the same seed writes the same bytes.
+using SeededRandom = compiler::SplitMix;
+double uniform(SeededRandom& rng, double lo, double hi) {
+  return lo + (hi - lo) * rng.uniform();
+}
+// In [0, n): the modulo bias is below 2^-50 for the small n used here.
+std::uint64_t below(SeededRandom& rng, std::uint64_t n) {
+  return rng.next() % n;
+}
+
+// Points closer than this to a boundary count as on it, metres (coordinates are built to 1 um).
+constexpr double kOnBoundary = 1e-6;
+
+Vec3 newell(const std::vector<Vec3>& loop) {
+  return model::area_vector(loop);
+}
+
+double loop_area(const Loop2& loop) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const dvec2 p = loop[i], q = loop[(i + 1) % loop.size()];
+    a += p.x * q.y - q.x * p.y;
+  }
+  return 0.5 * a;
+}
+
+ClipperLib::Path to_path(const Loop2& loop) {
+  ClipperLib::Path path;
+  for (const dvec2& p : loop) path.push_back(compiler::to_int(p));
+  return path;
+}
+
+Loop2 to_loop(const ClipperLib::Path& path) {
+  Loop2 loop;
+  for (const auto& p : path) loop.push_back(compiler::from_int(p));
+  return loop;
+}
+
+Loop2 rect(dvec2 lo, dvec2 hi) {
+  return {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+}
+
+// Even-odd over every loop: inside the outer boundary and outside its holes.
+bool inside(const std::vector<Loop2>& loops, dvec2 p) {
+  bool in = false;
+  for (const Loop2& l : loops)
+    for (std::size_t i = 0, j = l.size() - 1; i < l.size(); j = i++)
+      if ((l[i].y > p.y) != (l[j].y > p.y) &&
+          p.x < (l[j].x - l[i].x) * (p.y - l[i].y) / (l[j].y - l[i].y) + l[i].x)
+        in = !in;
+  return in;
+}
+
+// Does segment a-b pass through the open box (lo, hi)? Liang-Barsky clipping of the segment.
+bool segment_enters_box(dvec2 a, dvec2 b, dvec2 lo, dvec2 hi) {
+  double t0 = 0.0, t1 = 1.0;
+  const dvec2 d = b - a;
+  const double p[4] = {-d.x, d.x, -d.y, d.y};
+  const double q[4] = {a.x - lo.x, hi.x - a.x, a.y - lo.y, hi.y - a.y};
+  for (int k = 0; k < 4; ++k) {
+    if (p[k] == 0.0) {
+      if (q[k] <= 0.0) return false;
+      continue;
+    }
+    const double t = q[k] / p[k];
+    if (p[k] < 0.0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
+  }
+  return t0 < t1;
+}
+
+// A box lies in the room when its corners are inside and no edge of the room (outer or hole) enters it.
+bool box_in_room(const std::vector<Loop2>& room, dvec2 lo, dvec2 hi) {
+  for (const dvec2 c : {lo, dvec2(hi.x, lo.y), hi, dvec2(lo.x, hi.y)})
+    if (!inside(room, c)) return false;
+  for (const Loop2& l : room)
+    for (std::size_t i = 0; i < l.size(); ++i)
+      if (segment_enters_box(l[i], l[(i + 1) % l.size()], lo, hi)) return false;
+  return true;
+}
+
+bool boxes_overlap(dvec2 alo, dvec2 ahi, dvec2 blo, dvec2 bhi) {
+  return alo.x < bhi.x && blo.x < ahi.x && alo.y < bhi.y && blo.y < ahi.y;
+}
+
+// The point of the room farthest from its walls, on a 5 cm grid: where a ceiling panel is centred.
+dvec2 room_centre(const std::vector<Loop2>& room) {
+  dvec2 lo(1e300), hi(-1e300);
+  for (const dvec2& p : room.front()) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  constexpr double kStep = 0.05;
+  dvec2 best = (lo + hi) * 0.5;
+  double best_d = -1.0;
+  for (double y = lo.y + kStep / 2; y < hi.y; y += kStep)
+    for (double x = lo.x + kStep / 2; x < hi.x; x += kStep) {
+      const dvec2 p(x, y);
+      if (!inside(room, p)) continue;
+      double d = 1e300;
+      for (const Loop2& l : room)
+        for (std::size_t i = 0; i < l.size(); ++i) {
+          const dvec2 a = l[i], b = l[(i + 1) % l.size()];
+          const double t = std::clamp(glm::dot(p - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
+          d = std::min(d, glm::distance(p, a + t * (b - a)));
+        }
+      if (d > best_d) best_d = d, best = p;
+    }
+  return best;
+}
+
+// Splits a horizontal polygon with holes into polygons without (OBJ faces have none): each hole is cut
+// through by a line across the polygon at its centre, and the halves are split again until none is left.
+std::vector<Loop2> without_holes(const std::vector<Loop2>& loops) {
+  std::vector<Loop2> done;
+  std::vector<std::vector<Loop2>> todo{loops};
+  while (!todo.empty()) {
+    std::vector<Loop2> shape = std::move(todo.back());
+    todo.pop_back();
+    if (shape.size() == 1) {
+      done.push_back(std::move(shape.front()));
+      continue;
+    }
+    dvec2 lo(1e300), hi(-1e300), hlo(1e300), hhi(-1e300);
+    for (const dvec2& p : shape[0]) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    for (const dvec2& p : shape[1]) hlo = glm::min(hlo, p), hhi = glm::max(hhi, p);
+    const double cut = 0.5 * (hlo.x + hhi.x);
+    for (const Loop2& half : {rect(lo - 1.0, {cut, hi.y + 1.0}), rect({cut, lo.y - 1.0}, hi + 1.0)}) {
+      ClipperLib::Clipper c;
+      for (const Loop2& l : shape) c.AddPath(to_path(l), ClipperLib::ptSubject, true);
+      c.AddPath(to_path(half), ClipperLib::ptClip, true);
+      ClipperLib::PolyTree tree;
+      c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftEvenOdd, ClipperLib::pftNonZero);
+      for (ClipperLib::PolyNode* n = tree.GetFirst(); n; n = n->GetNext()) {
+        if (n->IsHole()) continue;
+        std::vector<Loop2> piece{to_loop(n->Contour)};
+        for (const ClipperLib::PolyNode* h : n->Childs) piece.push_back(to_loop(h->Contour));
+        todo.push_back(std::move(piece));
+      }
+    }
+  }
+  return done;
+}
+
+class BuildingWriter {
+ public:
+  explicit BuildingWriter(Building& b) : b_(b) {}
+
+  MeshPart& part(const std::string& group, const std::string& material) {
+    const auto [it, added] = index_.emplace(std::make_pair(group, material), b_.parts.size());
+    if (added) b_.parts.push_back({group, material, {}, {}});
+    return b_.parts[it->second];
+  }
+
+  // A planar face turned so that its normal points along `facing` (a face is built by its corners and
+  // turned here, so no caller has to get the winding right).
+  void face(const std::string& group, const std::string& material, std::vector<Vec3> loop, Vec3 facing,
+            bool wall = false) {
+    if (glm::dot(newell(loop), facing) < 0.0) std::reverse(loop.begin(), loop.end());
+    MeshPart& p = part(group, material);
+    std::vector<std::uint32_t> corners;
+    for (const Vec3& v : loop) {
+      corners.push_back(static_cast<std::uint32_t>(p.vertices.size()));
+      p.vertices.push_back(v);
+    }
+    p.faces.push_back(std::move(corners));
+    b_.triangles += loop.size() - 2;
+    b_.structure_triangles += loop.size() - 2;
+    if (wall) {
+      model::Polygon poly;
+      poly.vertices = std::move(loop);
+      poly.name = group;
+      b_.walls.push_back(std::move(poly));
+    }
+  }
+
+  // A vertical rectangle over a-b from z0 to z1, facing `side` (horizontal).
+  void wall(const std::string& group, const std::string& material, dvec2 a, dvec2 b, double z0, double z1,
+            dvec2 side) {
+    face(group, material, {{a, z0}, {b, z0}, {b, z1}, {a, z1}}, {side, 0.0}, material != "opening");
+  }
+
+  void flat(const std::string& group, const std::string& material, const Loop2& loop, double z, bool up) {
+    std::vector<Vec3> v;
+    for (const dvec2& p : loop) v.emplace_back(p, z);
+    face(group, material, std::move(v), {0.0, 0.0, up ? 1.0 : -1.0});
+  }
+
+ private:
+  Building& b_;
+  std::map<std::pair<std::string, std::string>, std::size_t> index_;
+};
+
+std::string storey_label(int k) {
+  char s[16];
+  std::snprintf(s, sizeof s, "s%02d", k + 1);
+  return s;
+}
+
+// The plan's polygons mirrored (x -> 2 mirror_x - x) or not, raised to storey k: what a unit contributes.
+struct UnitCopy {
+  std::string label;  // "A" or "B"
+  bool mirrored = false;
+  double mirror_x = 0.0;
+  [[nodiscard]] dvec2 at(dvec2 p) const { return mirrored ? dvec2(2.0 * mirror_x - p.x, p.y) : p; }
+};
+
+std::string material_of(const model::Model& m, const model::Polygon& p) {
+  if (p.role == model::Role::Opening) return "opening";
+  if (p.role == model::Role::Glass) return "glass";
+  return m.materials.at(p.material).name;
+}
+
+struct RoomFloor {
+  std::string name;
+  std::vector<Loop2> loops;  // outer then holes, world metres
+  double area = 0.0;
+  double z = 0.0;
+  std::vector<std::pair<dvec2, dvec2>> keep_clear;  // doorway boxes, grown by kDoorClearance
+};
+
+void emit_unit(BuildingWriter& out, const PlanUnit& plan, const UnitCopy& u, int k, double z0,
+               std::vector<RoomFloor>& rooms) {
+  const model::Model& m = plan.model;
+  const std::string prefix = storey_label(k) + " " + u.label + " ";
+  std::map<std::string, std::size_t> room_of_group;
+  std::vector<std::pair<dvec2, dvec2>> doorways;
+  for (const auto& p : m.polygons) {
+    const std::string group = prefix + m.groups[p.group];
+    const std::string material = material_of(m, p);
+    Vec3 n = newell(p.vertices);
+    if (u.mirrored) n.x = -n.x;
+    auto lift = [&](const std::vector<Vec3>& loop) {
+      std::vector<Vec3> v;
+      for (const Vec3& q : loop) v.emplace_back(u.at(q), q.z + z0);
+      return v;
+    };
+    if (p.holes.empty()) {
+      out.face(group, material, lift(p.vertices), n,
+               std::abs(n.z) < 1e-9 * glm::length(n) && p.role != model::Role::Opening);
+    } else {  // a floor or ceiling round a free-standing wall
+      std::vector<Loop2> loops(1);
+      for (const Vec3& q : p.vertices) loops[0].push_back(u.at(q));
+      for (const auto& h : p.holes) {
+        loops.emplace_back();
+        for (const Vec3& q : h) loops.back().push_back(u.at(q));
+      }
+      for (const Loop2& piece : without_holes(loops))
+        out.flat(group, material, piece, p.vertices[0].z + z0, n.z > 0);
+    }
+    if (p.name == "threshold") {
+      dvec2 lo(1e300), hi(-1e300);
+      for (const Vec3& q : p.vertices) lo = glm::min(lo, u.at(q)), hi = glm::max(hi, u.at(q));
+      doorways.emplace_back(lo - kDoorClearance, hi + kDoorClearance);
+    }
+    if (p.name == "floor" && m.groups[p.group].rfind("room ", 0) == 0 && n.z > 0) {
+      RoomFloor r;
+      r.name = group;
+      r.z = z0;
+      r.loops.emplace_back();
+      for (const Vec3& q : p.vertices) r.loops[0].push_back(u.at(q));
+      for (const auto& h : p.holes) {
+        r.loops.emplace_back();
+        for (const Vec3& q : h) r.loops.back().push_back(u.at(q));
+      }
+      r.area = std::abs(loop_area(r.loops[0]));
+      for (std::size_t h = 1; h < r.loops.size(); ++h) r.area -= std::abs(loop_area(r.loops[h]));
+      rooms.push_back(std::move(r));
+    }
+  }
+  for (auto& r : rooms)
+    if (r.name.rfind(prefix, 0) == 0) r.keep_clear = doorways;
+}
+
+struct Place {
+  dvec2 lo, hi;  // the footprint's box, gaps included
+};
+
+// Tries to place object `o` in `room`: a random spot and quarter turn, kPlacementTries times. Writes it and
+// returns true when it fits.
+bool place_object(BuildingWriter& out, Building& b, const FurnitureCatalogue& cat, std::size_t o,
+                  const RoomFloor& room, std::vector<Place>& placed, SeededRandom& rng) {
+  dvec2 lo(1e300), hi(-1e300);
+  for (const dvec2& p : room.loops.front()) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const FurnitureObject& obj = cat.objects[o];
+  for (int t = 0; t < kPlacementTries; ++t) {
+    const int turns = static_cast<int>(below(rng, 4));
+    const dvec2 half = (turns % 2 ? dvec2(obj.size.y, obj.size.x) : dvec2(obj.size.x, obj.size.y)) * 0.5;
+    const dvec2 c(uniform(rng, lo.x, hi.x), uniform(rng, lo.y, hi.y));
+    const dvec2 blo = c - half - kWallClearance, bhi = c + half + kWallClearance;
+    if (!box_in_room(room.loops, blo, bhi)) continue;
+    if (std::any_of(room.keep_clear.begin(), room.keep_clear.end(),
+                    [&](const auto& d) { return boxes_overlap(blo, bhi, d.first, d.second); }))
+      continue;
+    const dvec2 glo = c - half - kObjectGap * 0.5, ghi = c + half + kObjectGap * 0.5;
+    if (std::any_of(placed.begin(), placed.end(),
+                    [&](const Place& q) { return boxes_overlap(glo, ghi, q.lo, q.hi); }))
+      continue;
+    placed.push_back({glo, ghi});
+    PlacedObject po;
+    po.room = room.name;
+    po.object = o;
+    po.triangles = obj.triangles;
+    const std::string group = room.name + " " + obj.name + " #" + std::to_string(b.objects.size() + 1);
+    std::map<std::uint32_t, MeshPart*> parts;  // one part per material, its corners shared within it
+    std::map<std::uint32_t, std::vector<std::uint32_t>> remap;
+    for (const auto& f : obj.faces) {
+      MeshPart*& part = parts[f.material];
+      if (!part) part = &out.part(group, "furniture " + cat.materials[f.material].name);
+      auto& map = remap[f.material];
+      if (map.empty()) map.assign(obj.vertices.size(), UINT32_MAX);
+      std::vector<std::uint32_t> corners;
+      for (std::uint32_t v : f.corners) {
+        if (map[v] == UINT32_MAX) {
+          Vec3 q = obj.vertices[v];
+          for (int r = 0; r < turns; ++r) q = Vec3(-q.y, q.x, q.z);  // quarter turns are exact
+          q += Vec3(c, room.z);
+          map[v] = static_cast<std::uint32_t>(part->vertices.size());
+          part->vertices.push_back(q);
+          po.box.add(q);
+        }
+        corners.push_back(map[v]);
+      }
+      part->faces.push_back(std::move(corners));
+    }
+    b.triangles += obj.triangles;
+    b.objects.push_back(po);
+    return true;
+  }
+  return false;
+}
+
+// A storey's share of furniture, density x its rooms' floor, each object in a room drawn by floor area.
+// A room that cannot take an object is full, and the object goes to another; the density cannot fit when
+// every room is full.
+void furnish_storey(BuildingWriter& out, Building& b, const FurnitureCatalogue& cat,
+                    const std::vector<RoomFloor>& rooms, double density, SeededRandom& rng) {
+  double area = 0.0;
+  for (const auto& r : rooms) area += r.area;
+  const int wanted = static_cast<int>(std::floor(density * area + rng.uniform()));
+  std::vector<std::vector<Place>> placed(rooms.size());
+  std::vector<bool> full(rooms.size(), false);
+  double open_area = area;
+  std::size_t open_rooms = rooms.size();
+  for (int n = 0; n < wanted; ++n) {
+    const std::size_t o = below(rng, cat.objects.size());
+    bool done = false;
+    while (!done) {
+      if (open_rooms == 0)
+        throw Error(
+            fmt::format("--furnish {}: the rooms of a storey ({:.1f} m2) take only {} of its {} objects; "
+                        "ask for at most about {:.2f} objects per square metre",
+                        density, area, n, wanted, 0.9 * n / area));
+      double pick = rng.uniform() * std::max(open_area, 0.0);
+      std::size_t r = 0;
+      while (r + 1 < rooms.size() && (full[r] || pick >= rooms[r].area)) {
+        if (!full[r]) pick -= rooms[r].area;
+        ++r;
+      }
+      if (full[r]) {  // round-off at the end of the list: take the last open room
+        while (full[r]) --r;
+      }
+      done = place_object(out, b, cat, o, rooms[r], placed[r], rng);
+      if (!done) full[r] = true, open_area -= rooms[r].area, --open_rooms;
+    }
+  }
+}
+
+}  // namespace
+
+Building compose_building(const PlanUnit& plan, const FurnitureCatalogue& furniture,
+                          const BuildingOptions& options) {
+  if (options.storeys < 1)
+    throw Error("--storeys: must be at least 1 (got " + std::to_string(options.storeys) + ")");
+  if (!(options.furnish >= 0.0))
+    throw Error("--furnish: must be 0 or more objects per square metre (got " +
+                std::to_string(options.furnish) + ")");
+  double mean_footprint = 0.0;
+  for (const auto& o : furniture.objects)
+    mean_footprint += (o.size.x + kObjectGap) * (o.size.y + kObjectGap) / double(furniture.objects.size());
+  if (options.furnish * mean_footprint > kMaxCoverage)
+    throw Error("--furnish " + std::to_string(options.furnish) + ": the objects would cover " +
+                std::to_string(int(100 * options.furnish * mean_footprint)) + "% of every floor; at most " +
+                std::to_string(kMaxCoverage / mean_footprint) + " objects per square metre fit");
+
+  Building b;
+  b.storeys = options.storeys;
+  BuildingWriter out(b);
+  const double H = plan.storey_height;
+  const int risers = std::max(2, static_cast<int>(std::lround(H / kTargetRiser)));
+  const double riser = H / risers, run = (risers - 1) * kTread;
+
+  // Layout: unit A as drawn, unit B mirrored beyond the corridor along A's far side (+x), lobbies at the
+  // corridor's ends (stair to the south, lift to the north).
+  dvec2 lo(1e300), hi(-1e300);
+  for (const dvec2& p : plan.outline) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double mirror_x = hi.x + kCorridorWidth / 2;
+  const UnitCopy units[2] = {{"A", false, mirror_x}, {"B", true, mirror_x}};
+  const dvec2 region_lo(hi.x - kLobbyReach, lo.y - kStairLobby);
+  const dvec2 region_hi(hi.x + kCorridorWidth + kLobbyReach, hi.y + kLiftLobby);
+  const double xc = mirror_x;
+  const dvec2 shaft_lo(xc - kShaftSide / 2, region_hi.y - kShaftSide),
+      shaft_hi(xc + kShaftSide / 2, region_hi.y);
+  const dvec2 core_lo = shaft_lo + kShaftWall, core_hi = shaft_hi - kShaftWall;
+  const double stair_x0 = xc - run / 2, stair_x1 = xc + run / 2;
+  if (run > region_hi.x - region_lo.x - 2.0 || region_lo.y + 2 * kStairWidth > lo.y - 1.0)
+    throw Error("--plan " + plan.name + ": the stair lobby is too small for a storey of " +
+                std::to_string(H) + " m");
+
+  // The corridor and lobbies: the box between and around the units, less the units and the shaft.
+  ClipperLib::Clipper clip;
+  clip.AddPath(to_path(rect(region_lo, region_hi)), ClipperLib::ptSubject, true);
+  Loop2 outline_b;
+  for (auto it = plan.outline.rbegin(); it != plan.outline.rend(); ++it)
+    outline_b.push_back(units[1].at(*it));
+  clip.AddPath(to_path(plan.outline), ClipperLib::ptClip, true);
+  clip.AddPath(to_path(outline_b), ClipperLib::ptClip, true);
+  clip.AddPath(to_path(rect(shaft_lo, shaft_hi)), ClipperLib::ptClip, true);
+  ClipperLib::Paths region_paths;
+  clip.Execute(ClipperLib::ctDifference, region_paths, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  ClipperLib::CleanPolygons(region_paths, 1.0);
+  if (region_paths.size() != 1 || !ClipperLib::Orientation(region_paths[0]))
+    throw Error("--plan " + plan.name + ": the corridor between the units is not one region (" +
+                std::to_string(region_paths.size()) + " pieces)");
+  const Loop2 corridor = to_loop(region_paths[0]);
+  auto on_region_box = [&](dvec2 a, dvec2 b) {
+    auto same = [](double u, double v, double w) {
+      return std::abs(u - w) < kOnBoundary && std::abs(v - w) < kOnBoundary;
+    };
+    return same(a.x, b.x, region_lo.x) || same(a.x, b.x, region_hi.x) || same(a.y, b.y, region_lo.y) ||
+           same(a.y, b.y, region_hi.y);
+  };
+  auto on_shaft = [&](dvec2 a, dvec2 b) {
+    const dvec2 m = (a + b) * 0.5;
+    return m.x > shaft_lo.x - kOnBoundary && m.x < shaft_hi.x + kOnBoundary &&
+           m.y > shaft_lo.y - kOnBoundary && m.y < shaft_hi.y + kOnBoundary;
+  };
+
+  SeededRandom rng(options.seed);
+  const int N = options.storeys;
+  for (int k = 0; k < N; ++k) {
+    const double z0 = k * H, z1 = z0 + H;
+    const std::string s = storey_label(k);
+    std::vector<RoomFloor> rooms;
+    for (const UnitCopy& u : units) emit_unit(out, plan, u, k, z0, rooms);
+
+    // Corridor floor, ceiling and the lobbies' outer walls (the units' outer walls line the rest).
+    const std::string hall = s + " corridor";
+    out.flat(hall, "floor", corridor, z0, true);
+    out.flat(hall, "ceiling", corridor, z1, false);
+    for (std::size_t i = 0; i < corridor.size(); ++i) {
+      const dvec2 a = corridor[i], c = corridor[(i + 1) % corridor.size()];
+      if (!on_region_box(a, c) || on_shaft(a, c)) continue;
+      const dvec2 d = c - a;
+      out.wall(hall, "wall", a, c, z0, z1, dvec2(-d.y, d.x));  // counter-clockwise: inside is on the left
+    }
+
+    // The open stair from this storey to the next: a solid flight in lane k % 2, rising +x on even storeys
+    // and -x on odd ones, so the flights switch back; the floor above is open over the flight.
+    const double lane_lo = region_lo.y + (k % 2) * kStairWidth, lane_hi = lane_lo + kStairWidth;
+    if (k + 1 < N) {
+      const std::string g = s + " stair";
+      const double dir = k % 2 ? -1.0 : 1.0, x_start = k % 2 ? stair_x1 : stair_x0;
+      auto X = [&](double u) { return x_start + dir * u; };
+      std::vector<dvec2> profile{{0.0, 0.0}};  // (along the flight, height)
+      for (int i = 0; i + 1 < risers; ++i) {
+        profile.emplace_back(i * kTread, (i + 1) * riser);
+        profile.emplace_back((i + 1) * kTread, (i + 1) * riser);
+        out.face(g, "stair",
+                 {{X(i * kTread), lane_lo, z0 + i * riser},
+                  {X(i * kTread), lane_hi, z0 + i * riser},
+                  {X(i * kTread), lane_hi, z0 + (i + 1) * riser},
+                  {X(i * kTread), lane_lo, z0 + (i + 1) * riser}},
+                 {-dir, 0, 0});
+        out.face(g, "stair",
+                 {{X(i * kTread), lane_lo, z0 + (i + 1) * riser},
+                  {X((i + 1) * kTread), lane_lo, z0 + (i + 1) * riser},
+                  {X((i + 1) * kTread), lane_hi, z0 + (i + 1) * riser},
+                  {X(i * kTread), lane_hi, z0 + (i + 1) * riser}},
+                 {0, 0, 1});
+      }
+      profile.emplace_back(run, 0.0);
+      for (const double y : {lane_lo, lane_hi}) {
+        std::vector<Vec3> side;
+        for (const dvec2& q : profile) side.emplace_back(X(q.x), y, z0 + q.y);
+        out.face(g, "stair", side, {0, y == lane_lo ? -1.0 : 1.0, 0});
+      }
+      const double top = z0 + (risers - 1) * riser;
+      out.face(g, "stair",
+               {{X(run), lane_lo, z0}, {X(run), lane_hi, z0}, {X(run), lane_hi, top}, {X(run), lane_lo, top}},
+               {dir, 0, 0});
+      // The last step is the edge of the floor above: faced both ways, since both sides are seen.
+      for (const double facing : {-dir, dir})
+        out.face(
+            g, "stair",
+            {{X(run), lane_lo, top}, {X(run), lane_hi, top}, {X(run), lane_hi, z1}, {X(run), lane_lo, z1}},
+            {facing, 0, 0});
+      // The hole over the flight, cut out of this storey's ceiling and the next storey's floor.
+      const Loop2 hole = rect({stair_x0, lane_lo}, {stair_x1, lane_hi});
+      out.flat(g, "opening", hole, z1, false);
+      out.flat(storey_label(k + 1) + " stair", "opening", hole, z1, true);
+    }
+
+    // The lift shaft: walls of kShaftWall round an empty core, a door to the lobby on every storey.
+    const std::string lift = "lift shaft";
+    out.wall(lift, "wall", {shaft_lo.x, shaft_hi.y}, shaft_lo, z0, z1, {-1, 0});
+    out.wall(lift, "wall", {shaft_hi.x, shaft_lo.y}, shaft_hi, z0, z1, {1, 0});
+    out.wall(lift, "wall", shaft_lo, {shaft_hi.x, shaft_lo.y}, z0, z1, {0, -1});
+    out.wall(lift, "wall", shaft_hi, {shaft_lo.x, shaft_hi.y}, z0, z1, {0, 1});
+    out.wall(lift, "wall", core_lo, {core_lo.x, core_hi.y}, z0, z1, {1, 0});
+    out.wall(lift, "wall", {core_hi.x, core_lo.y}, core_hi, z0, z1, {-1, 0});
+    out.wall(lift, "wall", core_lo, {core_hi.x, core_lo.y}, z0, z1, {0, 1});
+    out.wall(lift, "wall", {core_lo.x, core_hi.y}, core_hi, z0, z1, {0, -1});
+    const double d0 = xc - kLiftDoorWidth / 2, d1 = xc + kLiftDoorWidth / 2, dz = z0 + kLiftDoorHeight;
+    const std::string door = s + " lift door";
+    out.wall(door, "opening", {d0, shaft_lo.y}, {d1, shaft_lo.y}, z0, dz, {0, -1});
+    out.wall(door, "opening", {d0, core_lo.y}, {d1, core_lo.y}, z0, dz, {0, 1});
+    out.wall(door, "wall", {d0, shaft_lo.y}, {d0, core_lo.y}, z0, dz, {1, 0});
+    out.wall(door, "wall", {d1, shaft_lo.y}, {d1, core_lo.y}, z0, dz, {-1, 0});
+    out.flat(door, "ceiling", rect({d0, shaft_lo.y}, {d1, core_lo.y}), dz, false);
+    out.flat(door, "floor", rect({d0, shaft_lo.y}, {d1, core_lo.y}), z0, true);
+
+    // Light: a panel at the middle of every room, panels along the corridor, one circuit each.
+    for (const RoomFloor& r : rooms) {
+      RoomInfo info;
+      info.name = r.name;
+      info.storey = k;
+      info.area = r.area;
+      info.panels.push_back({room_centre(r.loops), z1 - kPanelDrop});
+      info.watts = kRoomPanelWatts;
+      b.rooms.push_back(std::move(info));
+    }
+    RoomInfo hall_info;
+    hall_info.name = hall;
+    hall_info.storey = k;
+    hall_info.area = std::abs(loop_area(corridor));
+    hall_info.watts = kCorridorPanelWatts;
+    for (double y = region_lo.y + kCorridorPanelSpacing / 2; y < region_hi.y; y += kCorridorPanelSpacing)
+      if (inside({corridor}, {xc, y}) && !(y > shaft_lo.y - 0.5 && y < shaft_hi.y))
+        hall_info.panels.push_back({xc, y, z1 - kPanelDrop});
+    b.rooms.push_back(std::move(hall_info));
+
+    if (options.furnish > 0.0) furnish_storey(out, b, furniture, rooms, options.furnish, rng);
+  }
+  // The shaft's pit and top.
+  out.flat("lift shaft", "floor", rect(core_lo, core_hi), 0.0, true);
+  out.flat("lift shaft", "ceiling", rect(core_lo, core_hi), N * H, false);
+
+  b.start = {xc, 0.5 * (lo.y + hi.y), 0.0};
+  b.start_heading_deg = 90.0;
+  return b;
+}
+
+}  // namespace walk::gen
