@@ -11,15 +11,16 @@
 #include <polyclipping/clipper.hpp>
 
 #include "compiler/geometry/clipper_convert.hpp"
-#include "compiler/radiosity/sampling.hpp"
 #include "model/error.hpp"
+#include "tools/gen/building_writer.hpp"
+#include "tools/gen/floor_loops.hpp"
+#include "tools/gen/furnish.hpp"
 
 namespace walk::gen {
 namespace {
 
 using glm::dvec2;
 using model::Vec3;
-using Loop2 = std::vector<dvec2>;
 
 // The corridor between the two units and the lobbies at its ends, metres.
 constexpr double kCorridorWidth = 1.8;
@@ -30,26 +31,10 @@ constexpr double kLiftLobby = 3.8;   // north lobby: the lift shaft and room to 
 constexpr double kTargetRiser = 0.19, kTread = 0.25, kStairWidth = 1.0;
 // The lift shaft: outer side, wall thickness, and its door on each storey.
 constexpr double kShaftSide = 2.4, kShaftWall = 0.2, kLiftDoorWidth = 1.0, kLiftDoorHeight = 2.1;
-// Furniture stands this far from walls and from each other, and keeps doorways this clear, metres.
-constexpr double kWallClearance = 0.05, kObjectGap = 0.05, kDoorClearance = 0.6;
-// A room is furnished up to this fraction of its floor in footprints; denser asks cannot fit.
-constexpr double kMaxCoverage = 0.5;
-// Random positions tried for each object and shape before the room is declared full.
-constexpr int kPlacementTries = 400;
-// Ceiling panels: below the ceiling by this much, the size and radiant watts of a room's panel, and the
-// spacing and watts of the corridor's.
-constexpr double kPanelDrop = 0.02, kPanelSize = 0.6, kRoomPanelWatts = 40.0;
+// Ceiling panels: below the ceiling by this much, the radiant watts of a room's panel, and the spacing and
+// watts of the corridor's.
+constexpr double kPanelDrop = 0.02, kRoomPanelWatts = 40.0;
 constexpr double kCorridorPanelSpacing = 3.0, kCorridorPanelWatts = 20.0;
-// The compiler's SplitMix64 stream: the same numbers on every platform and standard library (std's
-// distributions do not promise that), so the same seed writes the same bytes.
-using SeededRandom = compiler::SplitMix;
-double uniform(SeededRandom& rng, double lo, double hi) {
-  return lo + (hi - lo) * rng.uniform();
-}
-// In [0, n): the modulo bias is below 2^-50 for the small n used here.
-std::uint64_t below(SeededRandom& rng, std::uint64_t n) {
-  return rng.next() % n;
-}
 
 // Points closer than this to a boundary count as on it, metres (coordinates are built to 1 um).
 constexpr double kOnBoundary = 1e-6;
@@ -57,181 +42,6 @@ constexpr double kOnBoundary = 1e-6;
 Vec3 newell(const std::vector<Vec3>& loop) {
   return model::area_vector(loop);
 }
-
-double loop_area(const Loop2& loop) {
-  double a = 0.0;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const dvec2 p = loop[i], q = loop[(i + 1) % loop.size()];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return 0.5 * a;
-}
-
-ClipperLib::Path to_path(const Loop2& loop) {
-  ClipperLib::Path path;
-  for (const dvec2& p : loop) path.push_back(compiler::to_int(p));
-  return path;
-}
-
-Loop2 to_loop(const ClipperLib::Path& path) {
-  Loop2 loop;
-  for (const auto& p : path) loop.push_back(compiler::from_int(p));
-  return loop;
-}
-
-Loop2 rect(dvec2 lo, dvec2 hi) {
-  return {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
-}
-
-// Even-odd over every loop: inside the outer boundary and outside its holes.
-bool inside(const std::vector<Loop2>& loops, dvec2 p) {
-  bool in = false;
-  for (const Loop2& l : loops)
-    for (std::size_t i = 0, j = l.size() - 1; i < l.size(); j = i++)
-      if ((l[i].y > p.y) != (l[j].y > p.y) &&
-          p.x < (l[j].x - l[i].x) * (p.y - l[i].y) / (l[j].y - l[i].y) + l[i].x)
-        in = !in;
-  return in;
-}
-
-// Does segment a-b pass through the open box (lo, hi)? Liang-Barsky clipping of the segment.
-bool segment_enters_box(dvec2 a, dvec2 b, dvec2 lo, dvec2 hi) {
-  double t0 = 0.0, t1 = 1.0;
-  const dvec2 d = b - a;
-  const double p[4] = {-d.x, d.x, -d.y, d.y};
-  const double q[4] = {a.x - lo.x, hi.x - a.x, a.y - lo.y, hi.y - a.y};
-  for (int k = 0; k < 4; ++k) {
-    if (p[k] == 0.0) {
-      if (q[k] <= 0.0) return false;
-      continue;
-    }
-    const double t = q[k] / p[k];
-    if (p[k] < 0.0)
-      t0 = std::max(t0, t);
-    else
-      t1 = std::min(t1, t);
-  }
-  return t0 < t1;
-}
-
-// A box lies in the room when its corners are inside and no edge of the room (outer or hole) enters it.
-bool box_in_room(const std::vector<Loop2>& room, dvec2 lo, dvec2 hi) {
-  for (const dvec2 c : {lo, dvec2(hi.x, lo.y), hi, dvec2(lo.x, hi.y)})
-    if (!inside(room, c)) return false;
-  for (const Loop2& l : room)
-    for (std::size_t i = 0; i < l.size(); ++i)
-      if (segment_enters_box(l[i], l[(i + 1) % l.size()], lo, hi)) return false;
-  return true;
-}
-
-bool boxes_overlap(dvec2 alo, dvec2 ahi, dvec2 blo, dvec2 bhi) {
-  return alo.x < bhi.x && blo.x < ahi.x && alo.y < bhi.y && blo.y < ahi.y;
-}
-
-// The point of the room farthest from its walls, on a 5 cm grid: where a ceiling panel is centred.
-dvec2 room_centre(const std::vector<Loop2>& room) {
-  dvec2 lo(1e300), hi(-1e300);
-  for (const dvec2& p : room.front()) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  constexpr double kStep = 0.05;
-  dvec2 best = (lo + hi) * 0.5;
-  double best_d = -1.0;
-  for (double y = lo.y + kStep / 2; y < hi.y; y += kStep)
-    for (double x = lo.x + kStep / 2; x < hi.x; x += kStep) {
-      const dvec2 p(x, y);
-      if (!inside(room, p)) continue;
-      double d = 1e300;
-      for (const Loop2& l : room)
-        for (std::size_t i = 0; i < l.size(); ++i) {
-          const dvec2 a = l[i], b = l[(i + 1) % l.size()];
-          const double t = std::clamp(glm::dot(p - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
-          d = std::min(d, glm::distance(p, a + t * (b - a)));
-        }
-      if (d > best_d) best_d = d, best = p;
-    }
-  return best;
-}
-
-// Splits a horizontal polygon with holes into polygons without (OBJ faces have none): each hole is cut
-// through by a line across the polygon at its centre, and the halves are split again until none is left.
-std::vector<Loop2> without_holes(const std::vector<Loop2>& loops) {
-  std::vector<Loop2> done;
-  std::vector<std::vector<Loop2>> todo{loops};
-  while (!todo.empty()) {
-    std::vector<Loop2> shape = std::move(todo.back());
-    todo.pop_back();
-    if (shape.size() == 1) {
-      done.push_back(std::move(shape.front()));
-      continue;
-    }
-    dvec2 lo(1e300), hi(-1e300), hlo(1e300), hhi(-1e300);
-    for (const dvec2& p : shape[0]) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    for (const dvec2& p : shape[1]) hlo = glm::min(hlo, p), hhi = glm::max(hhi, p);
-    const double cut = 0.5 * (hlo.x + hhi.x);
-    for (const Loop2& half : {rect(lo - 1.0, {cut, hi.y + 1.0}), rect({cut, lo.y - 1.0}, hi + 1.0)}) {
-      ClipperLib::Clipper c;
-      for (const Loop2& l : shape) c.AddPath(to_path(l), ClipperLib::ptSubject, true);
-      c.AddPath(to_path(half), ClipperLib::ptClip, true);
-      ClipperLib::PolyTree tree;
-      c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftEvenOdd, ClipperLib::pftNonZero);
-      for (ClipperLib::PolyNode* n = tree.GetFirst(); n; n = n->GetNext()) {
-        if (n->IsHole()) continue;
-        std::vector<Loop2> piece{to_loop(n->Contour)};
-        for (const ClipperLib::PolyNode* h : n->Childs) piece.push_back(to_loop(h->Contour));
-        todo.push_back(std::move(piece));
-      }
-    }
-  }
-  return done;
-}
-
-class BuildingWriter {
- public:
-  explicit BuildingWriter(Building& b) : b_(b) {}
-
-  MeshPart& part(const std::string& group, const std::string& material) {
-    const auto [it, added] = index_.emplace(std::make_pair(group, material), b_.parts.size());
-    if (added) b_.parts.push_back({group, material, {}, {}});
-    return b_.parts[it->second];
-  }
-
-  // A planar face turned so that its normal points along `facing` (a face is built by its corners and
-  // turned here, so no caller has to get the winding right).
-  void face(const std::string& group, const std::string& material, std::vector<Vec3> loop, Vec3 facing,
-            bool wall = false) {
-    if (glm::dot(newell(loop), facing) < 0.0) std::reverse(loop.begin(), loop.end());
-    MeshPart& p = part(group, material);
-    std::vector<std::uint32_t> corners;
-    for (const Vec3& v : loop) {
-      corners.push_back(static_cast<std::uint32_t>(p.vertices.size()));
-      p.vertices.push_back(v);
-    }
-    p.faces.push_back(std::move(corners));
-    b_.triangles += loop.size() - 2;
-    b_.structure_triangles += loop.size() - 2;
-    if (wall) {
-      model::Polygon poly;
-      poly.vertices = std::move(loop);
-      poly.name = group;
-      b_.walls.push_back(std::move(poly));
-    }
-  }
-
-  // A vertical rectangle over a-b from z0 to z1, facing `side` (horizontal).
-  void wall(const std::string& group, const std::string& material, dvec2 a, dvec2 b, double z0, double z1,
-            dvec2 side) {
-    face(group, material, {{a, z0}, {b, z0}, {b, z1}, {a, z1}}, {side, 0.0}, material != "opening");
-  }
-
-  void flat(const std::string& group, const std::string& material, const Loop2& loop, double z, bool up) {
-    std::vector<Vec3> v;
-    for (const dvec2& p : loop) v.emplace_back(p, z);
-    face(group, material, std::move(v), {0.0, 0.0, up ? 1.0 : -1.0});
-  }
-
- private:
-  Building& b_;
-  std::map<std::pair<std::string, std::string>, std::size_t> index_;
-};
 
 std::string storey_label(int k) {
   char s[16];
@@ -252,14 +62,6 @@ std::string material_of(const model::Model& m, const model::Polygon& p) {
   if (p.role == model::Role::Glass) return "glass";
   return m.materials.at(p.material).name;
 }
-
-struct RoomFloor {
-  std::string name;
-  std::vector<Loop2> loops;  // outer then holes, world metres
-  double area = 0.0;
-  double z = 0.0;
-  std::vector<std::pair<dvec2, dvec2>> keep_clear;  // doorway boxes, grown by kDoorClearance
-};
 
 void emit_unit(BuildingWriter& out, const PlanUnit& plan, const UnitCopy& u, int k, double z0,
                std::vector<RoomFloor>& rooms) {
@@ -293,7 +95,7 @@ void emit_unit(BuildingWriter& out, const PlanUnit& plan, const UnitCopy& u, int
     if (p.name == "threshold") {
       dvec2 lo(1e300), hi(-1e300);
       for (const Vec3& q : p.vertices) lo = glm::min(lo, u.at(q)), hi = glm::max(hi, u.at(q));
-      doorways.emplace_back(lo - kDoorClearance, hi + kDoorClearance);
+      doorways.emplace_back(lo, hi);
     }
     if (p.name == "floor" && m.groups[p.group].rfind("room ", 0) == 0 && n.z > 0) {
       RoomFloor r;
@@ -311,101 +113,7 @@ void emit_unit(BuildingWriter& out, const PlanUnit& plan, const UnitCopy& u, int
     }
   }
   for (auto& r : rooms)
-    if (r.name.rfind(prefix, 0) == 0) r.keep_clear = doorways;
-}
-
-struct Place {
-  dvec2 lo, hi;  // the footprint's box, gaps included
-};
-
-// Tries to place object `o` in `room`: a random spot and quarter turn, kPlacementTries times. Writes it and
-// returns true when it fits.
-bool place_object(BuildingWriter& out, Building& b, const FurnitureCatalogue& cat, std::size_t o,
-                  const RoomFloor& room, std::vector<Place>& placed, SeededRandom& rng) {
-  dvec2 lo(1e300), hi(-1e300);
-  for (const dvec2& p : room.loops.front()) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const FurnitureObject& obj = cat.objects[o];
-  for (int t = 0; t < kPlacementTries; ++t) {
-    const int turns = static_cast<int>(below(rng, 4));
-    const dvec2 half = (turns % 2 ? dvec2(obj.size.y, obj.size.x) : dvec2(obj.size.x, obj.size.y)) * 0.5;
-    const dvec2 c(uniform(rng, lo.x, hi.x), uniform(rng, lo.y, hi.y));
-    const dvec2 blo = c - half - kWallClearance, bhi = c + half + kWallClearance;
-    if (!box_in_room(room.loops, blo, bhi)) continue;
-    if (std::any_of(room.keep_clear.begin(), room.keep_clear.end(),
-                    [&](const auto& d) { return boxes_overlap(blo, bhi, d.first, d.second); }))
-      continue;
-    const dvec2 glo = c - half - kObjectGap * 0.5, ghi = c + half + kObjectGap * 0.5;
-    if (std::any_of(placed.begin(), placed.end(),
-                    [&](const Place& q) { return boxes_overlap(glo, ghi, q.lo, q.hi); }))
-      continue;
-    placed.push_back({glo, ghi});
-    PlacedObject po;
-    po.room = room.name;
-    po.object = o;
-    po.triangles = obj.triangles;
-    const std::string group = room.name + " " + obj.name + " #" + std::to_string(b.objects.size() + 1);
-    std::map<std::uint32_t, MeshPart*> parts;  // one part per material, its corners shared within it
-    std::map<std::uint32_t, std::vector<std::uint32_t>> remap;
-    for (const auto& f : obj.faces) {
-      MeshPart*& part = parts[f.material];
-      if (!part) part = &out.part(group, "furniture " + cat.materials[f.material].name);
-      auto& map = remap[f.material];
-      if (map.empty()) map.assign(obj.vertices.size(), UINT32_MAX);
-      std::vector<std::uint32_t> corners;
-      for (std::uint32_t v : f.corners) {
-        if (map[v] == UINT32_MAX) {
-          Vec3 q = obj.vertices[v];
-          for (int r = 0; r < turns; ++r) q = Vec3(-q.y, q.x, q.z);  // quarter turns are exact
-          q += Vec3(c, room.z);
-          map[v] = static_cast<std::uint32_t>(part->vertices.size());
-          part->vertices.push_back(q);
-          po.box.add(q);
-        }
-        corners.push_back(map[v]);
-      }
-      part->faces.push_back(std::move(corners));
-    }
-    b.triangles += obj.triangles;
-    b.objects.push_back(po);
-    return true;
-  }
-  return false;
-}
-
-// A storey's share of furniture, density x its rooms' floor, each object in a room drawn by floor area.
-// A room that cannot take an object is full, and the object goes to another; the density cannot fit when
-// every room is full.
-void furnish_storey(BuildingWriter& out, Building& b, const FurnitureCatalogue& cat,
-                    const std::vector<RoomFloor>& rooms, double density, SeededRandom& rng) {
-  double area = 0.0;
-  for (const auto& r : rooms) area += r.area;
-  const int wanted = static_cast<int>(std::floor(density * area + rng.uniform()));
-  std::vector<std::vector<Place>> placed(rooms.size());
-  std::vector<bool> full(rooms.size(), false);
-  double open_area = area;
-  std::size_t open_rooms = rooms.size();
-  for (int n = 0; n < wanted; ++n) {
-    const std::size_t o = below(rng, cat.objects.size());
-    bool done = false;
-    while (!done) {
-      if (open_rooms == 0)
-        throw Error(
-            fmt::format("--furnish {}: the rooms of a storey ({:.1f} m2) take only {} of its {} objects; "
-                        "ask for at most about {:.2f} objects per square metre",
-                        density, area, n, wanted, 0.9 * n / area));
-      double pick = rng.uniform() * std::max(open_area, 0.0);
-      std::size_t r = 0;
-      while (r + 1 < rooms.size() && (full[r] || pick >= rooms[r].area)) {
-        if (!full[r]) pick -= rooms[r].area;
-        ++r;
-      }
-      if (full[r]) {  // round-off at the end of the list: take the last open room
-        while (full[r]) --r;
-      }
-      done = place_object(out, b, cat, o, rooms[r], placed[r], rng);
-      if (!done) full[r] = true, open_area -= rooms[r].area, --open_rooms;
-    }
-  }
+    if (r.name.rfind(prefix, 0) == 0) r.doorways = doorways;
 }
 
 }  // namespace
@@ -417,13 +125,7 @@ Building compose_building(const PlanUnit& plan, const FurnitureCatalogue& furnit
   if (!(options.furnish >= 0.0))
     throw Error("--furnish: must be 0 or more objects per square metre (got " +
                 std::to_string(options.furnish) + ")");
-  double mean_footprint = 0.0;
-  for (const auto& o : furniture.objects)
-    mean_footprint += (o.size.x + kObjectGap) * (o.size.y + kObjectGap) / double(furniture.objects.size());
-  if (options.furnish * mean_footprint > kMaxCoverage)
-    throw Error("--furnish " + std::to_string(options.furnish) + ": the objects would cover " +
-                std::to_string(int(100 * options.furnish * mean_footprint)) + "% of every floor; at most " +
-                std::to_string(kMaxCoverage / mean_footprint) + " objects per square metre fit");
+  check_furnish_density(furniture, options.furnish);
 
   Building b;
   b.storeys = options.storeys;
