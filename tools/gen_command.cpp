@@ -49,8 +49,6 @@ int run_gen(const GenOptions& o) {
   if (o.storeys) b.storeys = *o.storeys;
   if (o.furnish) b.furnish = *o.furnish;
   b.seed = o.seed;
-  if (b.storeys < 1) throw Error("--storeys: must be at least 1 (got " + std::to_string(b.storeys) + ")");
-  if (!(b.furnish >= 0.0)) throw Error("--furnish: must be 0 or more objects per square metre");
 
   const gen::PlanUnit plan = gen::load_plan_unit(o.plan, o.scenes, o.data);
   const std::string room_file = (std::filesystem::path(o.data) / "conference-room/conference.obj").string();

@@ -16,7 +16,7 @@ namespace {
 using model::Vec3;
 
 // What qualifies as furniture, metres: standing on the floor (lowest point within kFloorContact of the
-// model's floor), a footprint that passes a door and is not a sliver, and tall enough to be seen.
+// model's floor), a footprint no larger than a conference table and not a sliver, and tall enough to be seen.
 constexpr double kFloorContact = 0.02;
 constexpr double kMinFootprint = 0.15, kMaxFootprint = 3.0;
 constexpr double kMinHeight = 0.2, kMaxHeight = 2.0;
