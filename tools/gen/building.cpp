@@ -39,10 +39,6 @@ constexpr double kCorridorPanelSpacing = 3.0, kCorridorPanelWatts = 20.0;
 // Points closer than this to a boundary count as on it, metres (coordinates are built to 1 um).
 constexpr double kOnBoundary = 1e-6;
 
-Vec3 newell(const std::vector<Vec3>& loop) {
-  return model::area_vector(loop);
-}
-
 std::string storey_label(int k) {
   char s[16];
   std::snprintf(s, sizeof s, "s%02d", k + 1);
@@ -67,12 +63,21 @@ void emit_unit(BuildingWriter& out, const PlanUnit& plan, const UnitCopy& u, int
                std::vector<RoomFloor>& rooms) {
   const model::Model& m = plan.model;
   const std::string prefix = storey_label(k) + " " + u.label + " ";
-  std::map<std::string, std::size_t> room_of_group;
   std::vector<std::pair<dvec2, dvec2>> doorways;
+  // A horizontal polygon seen from above in this copy: its outer loop, then its holes.
+  auto plan_loops = [&](const model::Polygon& p) {
+    std::vector<Loop2> loops(1);
+    for (const Vec3& q : p.vertices) loops[0].push_back(u.at(q));
+    for (const auto& h : p.holes) {
+      loops.emplace_back();
+      for (const Vec3& q : h) loops.back().push_back(u.at(q));
+    }
+    return loops;
+  };
   for (const auto& p : m.polygons) {
     const std::string group = prefix + m.groups[p.group];
     const std::string material = material_of(m, p);
-    Vec3 n = newell(p.vertices);
+    Vec3 n = model::area_vector(p.vertices);
     if (u.mirrored) n.x = -n.x;
     auto lift = [&](const std::vector<Vec3>& loop) {
       std::vector<Vec3> v;
@@ -83,13 +88,7 @@ void emit_unit(BuildingWriter& out, const PlanUnit& plan, const UnitCopy& u, int
       out.face(group, material, lift(p.vertices), n,
                std::abs(n.z) < 1e-9 * glm::length(n) && p.role != model::Role::Opening);
     } else {  // a floor or ceiling round a free-standing wall
-      std::vector<Loop2> loops(1);
-      for (const Vec3& q : p.vertices) loops[0].push_back(u.at(q));
-      for (const auto& h : p.holes) {
-        loops.emplace_back();
-        for (const Vec3& q : h) loops.back().push_back(u.at(q));
-      }
-      for (const Loop2& piece : without_holes(loops))
+      for (const Loop2& piece : without_holes(plan_loops(p)))
         out.flat(group, material, piece, p.vertices[0].z + z0, n.z > 0);
     }
     if (p.name == "threshold") {
@@ -101,12 +100,7 @@ void emit_unit(BuildingWriter& out, const PlanUnit& plan, const UnitCopy& u, int
       RoomFloor r;
       r.name = group;
       r.z = z0;
-      r.loops.emplace_back();
-      for (const Vec3& q : p.vertices) r.loops[0].push_back(u.at(q));
-      for (const auto& h : p.holes) {
-        r.loops.emplace_back();
-        for (const Vec3& q : h) r.loops.back().push_back(u.at(q));
-      }
+      r.loops = plan_loops(p);
       r.area = std::abs(loop_area(r.loops[0]));
       for (std::size_t h = 1; h < r.loops.size(); ++h) r.area -= std::abs(loop_area(r.loops[h]));
       rooms.push_back(std::move(r));

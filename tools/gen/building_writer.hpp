@@ -19,10 +19,14 @@ class BuildingWriter {
  public:
   explicit BuildingWriter(Building& b) : b_(b) {}
 
-  MeshPart& part(const std::string& group, const std::string& material) {
+  // The part's index in Building::parts: a reference would dangle once another part is added.
+  std::size_t part_index(const std::string& group, const std::string& material) {
     const auto [it, added] = index_.emplace(std::make_pair(group, material), b_.parts.size());
     if (added) b_.parts.push_back({group, material, {}, {}});
-    return b_.parts[it->second];
+    return it->second;
+  }
+  MeshPart& part(const std::string& group, const std::string& material) {
+    return b_.parts[part_index(group, material)];
   }
 
   // A planar face turned so that its normal points along `facing` (a face is built by its corners and

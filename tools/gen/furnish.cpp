@@ -63,11 +63,12 @@ bool place_object(BuildingWriter& out, Building& b, const FurnitureCatalogue& ca
     po.object = o;
     po.triangles = obj.triangles;
     const std::string group = room.name + " " + obj.name + " #" + std::to_string(b.objects.size() + 1);
-    std::map<std::uint32_t, MeshPart*> parts;  // one part per material, its corners shared within it
+    std::map<std::uint32_t, std::size_t> parts;  // one part per material, its corners shared within it
     std::map<std::uint32_t, std::vector<std::uint32_t>> remap;
     for (const auto& f : obj.faces) {
-      MeshPart*& part = parts[f.material];
-      if (!part) part = &out.part(group, "furniture " + cat.materials[f.material].name);
+      const auto [at, added] = parts.emplace(f.material, 0);
+      if (added) at->second = out.part_index(group, "furniture " + cat.materials[f.material].name);
+      MeshPart* part = &b.parts[at->second];
       auto& map = remap[f.material];
       if (map.empty()) map.assign(obj.vertices.size(), UINT32_MAX);
       std::vector<std::uint32_t> corners;
