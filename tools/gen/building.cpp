@@ -283,6 +283,22 @@ Building compose_building(const PlanUnit& plan, const FurnitureCatalogue& furnit
   // The shaft's pit and top.
   out.flat("lift shaft", "floor", rect(core_lo, core_hi), 0.0, true);
   out.flat("lift shaft", "ceiling", rect(core_lo, core_hi), N * H, false);
+  // The envelope's ground slab and roof over the whole footprint, under and over the walls' hollow cores
+  // too: a closed building, so the compile's inside flood finds no way out.
+  {
+    ClipperLib::Clipper all;
+    all.AddPath(to_path(rect(region_lo, region_hi)), ClipperLib::ptSubject, true);
+    all.AddPath(to_path(plan.outline), ClipperLib::ptClip, true);
+    all.AddPath(to_path(outline_b), ClipperLib::ptClip, true);
+    ClipperLib::Paths footprint;
+    all.Execute(ClipperLib::ctUnion, footprint, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    ClipperLib::CleanPolygons(footprint, 1.0);
+    for (const auto& path : footprint) {
+      if (!ClipperLib::Orientation(path)) continue;  // a courtyard's hole: none in these plans
+      out.flat("envelope", "floor", to_loop(path), 0.0, false);
+      out.flat("envelope", "ceiling", to_loop(path), N * H, true);
+    }
+  }
 
   b.start = {xc, 0.5 * (lo.y + hi.y), 0.0};
   b.start_heading_deg = 90.0;
