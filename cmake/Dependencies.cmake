@@ -1,6 +1,8 @@
 # Every dependency comes from a Debian 12 package (scripts/install-deps.sh installs them).
 find_package(PkgConfig REQUIRED)
 find_package(Threads REQUIRED)
+# oneTBB: the compiler stages' parallel loops (work stealing, exceptions carried to the caller).
+find_package(TBB REQUIRED)
 find_package(glm REQUIRED)
 find_package(ZLIB REQUIRED)
 find_package(PNG REQUIRED)

@@ -494,6 +494,14 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     StageTimer t(stages, "cells");
     VisibilityConfig vis = config.visibility;
     if (vis.threads == 0) vis.threads = options.threads;
+    // Inside-flood seeds: the start at eye height, and a point in the room below each luminaire.
+    constexpr double kSeedEyeHeight = 1.2;        // metres above the start point, which is on a floor
+    constexpr double kSeedBelowLuminaire = 0.25;  // metres along the luminaire's normal, into its room
+    if (config.start)
+      vis.seeds.push_back(config.start->position - model.origin + model::Vec3(0.0, 0.0, kSeedEyeHeight));
+    for (const auto& l : out.luminaires)
+      vis.seeds.push_back(model::Vec3(l.position[0], l.position[1], l.position[2]) +
+                          kSeedBelowLuminaire * model::Vec3(l.normal[0], l.normal[1], l.normal[2]));
     const auto counts = compute_cells(out, vis);
     t.done(counts.polygons_in, counts.cells_out, counts.detail);
   }

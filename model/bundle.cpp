@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -116,6 +117,9 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kCells, c.cells),
       pending(section::kNodes, c.nodes),
       pending(section::kPvs, c.pvs),
+      pending(section::kClusters, c.clusters),
+      pending(section::kLeakPath, c.leak_path),
+      pending(section::kClusterPolygons, c.cluster_polygons),
       pending(section::kStages, c.stages),
       PendingSection{section::kStrings, 1, c.strings.data(), c.strings.size()}};
 
@@ -199,8 +203,10 @@ void Bundle::validate() {
   std::memcpy(&header, base, sizeof header);
   if (header.magic != kBundleMagic) fail("bad magic (not a .walk bundle)");
   if (header.version != kBundleVersion)
-    fail("version " + std::to_string(header.version) + ", this build reads version " +
-         std::to_string(kBundleVersion));
+    throw Error(located(path_, 0,
+                        "bundle format version " + std::to_string(header.version) +
+                            ", this build reads version " + std::to_string(kBundleVersion),
+                        "recompile it from its scene with this build's `walk compile`"));
   if (header.file_size != size_)
     fail("header says " + std::to_string(header.file_size) + " bytes, file has " + std::to_string(size_));
   if (header.section_count > 64) fail("implausible section count " + std::to_string(header.section_count));
@@ -252,6 +258,9 @@ void Bundle::validate() {
   get(section::kCells, cells_, true);
   get(section::kNodes, nodes_, true);
   get(section::kPvs, pvs_, true);
+  get(section::kClusters, clusters_, false);
+  get(section::kLeakPath, leak_path_, false);
+  get(section::kClusterPolygons, cluster_polygons_, false);
   get(section::kStages, stages_, true);
   get(section::kStrings, strings_, true);
 
@@ -326,8 +335,25 @@ void Bundle::validate() {
     if (c.pvs_first > pvs_.size() || c.pvs_count > pvs_.size() - c.pvs_first)
       fail("CELL " + std::to_string(i) + " PVS range runs past PVSL");
   }
+  for (const auto& p : leak_path_)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      fail("LEAK holds a non-finite point");
+  for (std::size_t i = 0; i < cells_.size(); ++i)
+    if ((cells_[i].flags & ~kCellOutside) != 0) fail("CELL " + std::to_string(i) + " has unknown flags");
+  if (clusters_.empty() != cluster_polygons_.empty()) fail("CLUS and CLPO come together");
+  for (std::size_t i = 0; i < clusters_.size(); ++i) {
+    const auto& k = clusters_[i];
+    if (k.polygon_first > cluster_polygons_.size() ||
+        k.polygon_count > cluster_polygons_.size() - k.polygon_first)
+      fail("CLUS " + std::to_string(i) + " polygon range runs past CLPO");
+  }
+  for (std::uint32_t id : cluster_polygons_)
+    if (id >= polygons_.size()) fail("CLPO refers to a polygon out of range");
+  const std::size_t pvs_targets = clusters_.empty() ? polygons_.size() : clusters_.size();
   for (std::uint32_t id : pvs_)
-    if (id >= polygons_.size()) fail("PVSL refers to a polygon out of range");
+    if (id >= pvs_targets)
+      fail(clusters_.empty() ? "PVSL refers to a polygon out of range"
+                             : "PVSL refers to a cluster out of range");
   const auto cell_count = static_cast<std::int64_t>(cells_.size());
   const auto node_count = static_cast<std::int64_t>(nodes_.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
@@ -338,6 +364,26 @@ void Bundle::validate() {
       if (!cell_ok && !node_ok) fail("NODE " + std::to_string(i) + " has an invalid child");
     }
   }
+}
+
+std::vector<std::uint32_t> cell_polygons(const CellRecord& cell, std::span<const std::uint32_t> pvs,
+                                         std::span<const ClusterRecord> clusters,
+                                         std::span<const std::uint32_t> cluster_polygons) {
+  const auto ids = pvs.subspan(cell.pvs_first, cell.pvs_count);
+  if (clusters.empty()) return {ids.begin(), ids.end()};
+  std::vector<std::uint32_t> out;
+  for (const auto k : ids) {
+    const auto& c = clusters[k];
+    out.insert(out.end(), cluster_polygons.begin() + c.polygon_first,
+               cluster_polygons.begin() + c.polygon_first + c.polygon_count);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<std::uint32_t> Bundle::cell_polygons(std::uint32_t cell) const {
+  return model::cell_polygons(cells_[cell], pvs_, clusters_, cluster_polygons_);
 }
 
 std::uint32_t Bundle::locate_cell(const double p[3]) const {

@@ -31,13 +31,22 @@ struct BundleContents {
   std::vector<CoarseRangeRecord> coarse_ranges;             // empty, or one per polygon
   std::vector<CellRecord> cells;
   std::vector<NodeRecord> nodes;
-  std::vector<std::uint32_t> pvs;
+  std::vector<std::uint32_t> pvs;  // cluster ids (polygon ids when `clusters` is empty)
+  std::vector<ClusterRecord> clusters;
+  std::vector<std::uint32_t> cluster_polygons;
+  std::vector<std::array<float, 3>> leak_path;  // empty, or seed -> portals -> the largest leak (local)
   std::vector<StageRecord> stages;
   std::string strings{'\0'};  // offset 0 is the empty string
 
   // Appends a NUL-terminated string and returns its offset.
   std::uint32_t add_string(std::string_view s);
 };
+
+// The polygons of the clusters in `cell`'s PVS, sorted. Without clusters, PVSL lists polygons.
+[[nodiscard]] std::vector<std::uint32_t> cell_polygons(const CellRecord& cell,
+                                                       std::span<const std::uint32_t> pvs,
+                                                       std::span<const ClusterRecord> clusters,
+                                                       std::span<const std::uint32_t> cluster_polygons);
 
 // Writes atomically: temp file in the same folder, fsync, rename. Throws walk::Error on failure.
 void write_bundle(const std::string& path, const BundleContents& contents);
@@ -70,7 +79,12 @@ class Bundle {
   [[nodiscard]] std::span<const CoarseRangeRecord> coarse_ranges() const { return coarse_ranges_; }
   [[nodiscard]] std::span<const CellRecord> cells() const { return cells_; }
   [[nodiscard]] std::span<const NodeRecord> nodes() const { return nodes_; }
-  [[nodiscard]] std::span<const std::uint32_t> pvs() const { return pvs_; }
+  [[nodiscard]] std::span<const std::uint32_t> pvs() const { return pvs_; }  // cluster ids
+  [[nodiscard]] std::span<const ClusterRecord> clusters() const { return clusters_; }
+  [[nodiscard]] std::span<const std::array<float, 3>> leak_path() const { return leak_path_; }
+  [[nodiscard]] std::span<const std::uint32_t> cluster_polygons() const { return cluster_polygons_; }
+  // The polygons `cell` may see (its PVS's clusters expanded), sorted.
+  [[nodiscard]] std::vector<std::uint32_t> cell_polygons(std::uint32_t cell) const;
   [[nodiscard]] std::span<const StageRecord> stages() const { return stages_; }
   [[nodiscard]] std::string_view string(std::uint32_t offset) const;  // validated at open
   [[nodiscard]] std::uint64_t file_size() const { return size_; }
@@ -102,6 +116,9 @@ class Bundle {
   std::span<const CellRecord> cells_;
   std::span<const NodeRecord> nodes_;
   std::span<const std::uint32_t> pvs_;
+  std::span<const ClusterRecord> clusters_;
+  std::span<const std::array<float, 3>> leak_path_;
+  std::span<const std::uint32_t> cluster_polygons_;
   std::span<const StageRecord> stages_;
   std::span<const char> strings_;
 };

@@ -8,7 +8,7 @@
 namespace walk::model {
 
 inline constexpr std::array<char, 8> kBundleMagic{'W', 'A', 'L', 'K', 'B', 'N', 'D', 'L'};
-inline constexpr std::uint32_t kBundleVersion = 2;
+inline constexpr std::uint32_t kBundleVersion = 3;  // 3: PVSL holds clusters (CLUS, CLPO)
 inline constexpr std::uint64_t kSectionAlignment = 16;
 
 // Tags of the sections, as four ASCII bytes read as a little-endian integer.
@@ -105,13 +105,29 @@ struct CoarseRangeRecord {
 static_assert(sizeof(CoarseRangeRecord) == 8);
 
 // A cell of the model-space subdivision with its potentially visible set (a range of PVSL).
+// Cell flags. Outside: only the outside reaches it (inside_flood): off the walk, its PVS is empty and a
+// renderer that finds the eye there draws everything.
+inline constexpr std::uint32_t kCellOutside = 1;
+
 struct CellRecord {
   float bounds_min[3];
   float bounds_max[3];
   std::uint32_t pvs_first;
   std::uint32_t pvs_count;
+  std::uint32_t flags = 0;
+  std::uint32_t reserved = 0;
 };
-static_assert(sizeof(CellRecord) == 32);
+static_assert(sizeof(CellRecord) == 40);
+
+// A cluster: polygons of one object lying close together (or one shell polygon), the unit a PVS lists.
+// Its polygons are a range of CLPO. A bundle without CLUS has one cluster per polygon, in polygon order.
+struct ClusterRecord {
+  float bounds_min[3];
+  float bounds_max[3];
+  std::uint32_t polygon_first;
+  std::uint32_t polygon_count;
+};
+static_assert(sizeof(ClusterRecord) == 32);
 
 // A node of the cell tree: points with plane(p) >= 0 go to `front`. A negative child c is cell -c-1.
 struct NodeRecord {
@@ -152,7 +168,10 @@ inline constexpr std::uint32_t kCoarseIndices = tag("CIDX");  // u32 vertex indi
 inline constexpr std::uint32_t kCoarseRanges = tag("CRNG");
 inline constexpr std::uint32_t kCells = tag("CELL");
 inline constexpr std::uint32_t kNodes = tag("NODE");
-inline constexpr std::uint32_t kPvs = tag("PVSL");  // polygon indices, per cell ranges
+inline constexpr std::uint32_t kPvs = tag("PVSL");       // cluster indices, per cell ranges
+inline constexpr std::uint32_t kLeakPath = tag("LEAK");  // optional, float xyz: seed to the largest leak
+inline constexpr std::uint32_t kClusters = tag("CLUS");  // optional, see ClusterRecord
+inline constexpr std::uint32_t kClusterPolygons = tag("CLPO");  // u32 polygon indices of the clusters
 inline constexpr std::uint32_t kStages = tag("STAG");
 inline constexpr std::uint32_t kStrings = tag("STRS");
 }  // namespace section

@@ -110,8 +110,7 @@ struct Renderer::Impl {
     }
     auto& slot = (coarse ? coarse_cell_lists : cell_lists)[cell];
     if (!slot) {
-      const auto& record = bundle.cells()[cell];
-      slot = build_draw_list(polygons(coarse), bundle.pvs().subspan(record.pvs_first, record.pvs_count));
+      slot = build_draw_list(polygons(coarse), bundle.cell_polygons(cell));
     }
     return *slot;
   }
@@ -400,6 +399,9 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     const double eye[3] = {view.eye.x, view.eye.y, view.eye.z};
     cell = r.bundle.locate_cell(eye);
     if (cell >= r.bundle.cells().size()) cell = FrameStats::kNoCell;
+    // Off the walk (only the outside reaches it): no PVS there, everything is drawn.
+    else if (r.bundle.cells()[cell].flags & model::kCellOutside)
+      cell = FrameStats::kNoCell;
   }
   // The compiler leaves out of each cell's PVS the polygons turned away from all of it, which only a
   // renderer culling back faces may skip: with culling off, every polygon is drawn.
@@ -414,8 +416,8 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     std::span<const std::uint32_t> candidates;
     std::vector<std::uint32_t> all;
     if (list_cell < r.bundle.cells().size()) {
-      const auto& record = r.bundle.cells()[list_cell];
-      candidates = r.bundle.pvs().subspan(record.pvs_first, record.pvs_count);
+      all = r.bundle.cell_polygons(list_cell);
+      candidates = all;
     } else {
       all.resize(r.bundle.polygons().size());
       for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;

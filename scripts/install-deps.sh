@@ -12,6 +12,8 @@ packages=(
   libhidapi-dev libgpiod-dev libmodbus-dev libsystemd-dev socat systemd procps
   # config, CLI, logging, geometry, images
   libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev libpolyclipping-dev libpng-dev
+  # parallel loops of the compiler stages
+  libtbb-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
   # reference ray caster compared side by side with ours (optional at build time)

@@ -28,6 +28,9 @@ int inspect(const std::string& path, bool list) {
   std::printf("luminaires        %zu\ncircuits          %zu\n", b->luminaires().size(), b->circuits().size());
   std::printf("cells             %zu (tree nodes %zu, PVS entries %zu)\n", b->cells().size(),
               b->nodes().size(), b->pvs().size());
+  std::printf("clusters          %zu%s\n",
+              b->clusters().empty() ? b->polygons().size() : b->clusters().size(),
+              b->clusters().empty() ? " (one per polygon)" : "");
   std::printf("ambient %.4f W/m2 per albedo, exposure %.4f W/m2 = white\n", m.ambient, m.exposure);
   std::printf("stages:\n");
   for (const auto& s : b->stages())

@@ -30,8 +30,7 @@ struct VerifyArgs {
 
 std::vector<std::vector<std::uint32_t>> bundle_pvs(const model::Bundle& b) {
   std::vector<std::vector<std::uint32_t>> out;
-  for (const auto& c : b.cells())
-    out.emplace_back(b.pvs().begin() + c.pvs_first, b.pvs().begin() + c.pvs_first + c.pvs_count);
+  for (std::uint32_t c = 0; c < b.cells().size(); ++c) out.push_back(b.cell_polygons(c));
   return out;
 }
 
@@ -93,7 +92,15 @@ int verify(const VerifyArgs& args) {
   std::vector<VerifyRow> rows;
   std::vector<std::string> missed_at;
   std::size_t portal_eyes = 0;
+  std::size_t off_walk = 0;
   for (std::uint32_t c = 0; c < part.cells.size(); ++c) {
+    // Off the walk (only the outside reaches it): no viewer stands there and the renderer draws everything.
+    if (!keep_images && (b->cells()[c].flags & model::kCellOutside)) {
+      ++off_walk;
+      views.emplace_back();
+      missed_at.emplace_back();
+      continue;
+    }
     CellViews v = j.views(part.cells[c], c, portal_viewpoints(graph, part.cells[c], c));
     portal_eyes += v.portal_viewpoints;
     if (!keep_images) {
@@ -107,6 +114,8 @@ int verify(const VerifyArgs& args) {
   const double render_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   if (!args.sweep.empty()) {
+    std::vector<std::string> group_names;
+    for (const auto& g : b->groups()) group_names.emplace_back(b->string(g.name));
     std::FILE* csv = std::fopen(args.sweep.c_str(), "w");
     if (!csv) {
       std::fprintf(stderr, "walk verify: cannot write %s\n", args.sweep.c_str());
@@ -136,7 +145,8 @@ int verify(const VerifyArgs& args) {
       cfg.threshold = args.threshold;
       cfg.cull_back_faces = args.options.cull_back_faces;
       const auto t = std::chrono::steady_clock::now();
-      const VisibilityResult vr = compute_visibility(b->vertices(), b->indices(), b->polygons(), cfg);
+      const VisibilityResult vr =
+          compute_visibility(b->vertices(), b->indices(), b->polygons(), cfg, group_names);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
       if (vr.partition.cells.size() != views.size()) {
         std::fprintf(stderr,
@@ -146,7 +156,9 @@ int verify(const VerifyArgs& args) {
         std::fclose(csv);
         return 1;
       }
-      const VerifyReport r = judge(j, views, vr.pvs);
+      std::vector<std::vector<std::uint32_t>> pvs;
+      for (std::size_t c = 0; c < vr.pvs.size(); ++c) pvs.push_back(vr.polygon_pvs(c));
+      const VerifyReport r = judge(j, views, pvs);
       std::fprintf(csv, "%s,%d,%d,%.3f,%llu,%llu,%.1f,%llu,%.3f,%zu,%d\n", pvs_method_name(s.method),
                    s.points, s.rays, seconds, static_cast<unsigned long long>(r.missed),
                    static_cast<unsigned long long>(r.pixels), r.pvs_average,
@@ -172,8 +184,9 @@ int verify(const VerifyArgs& args) {
       if (views[row.cell].no_free_space) std::printf(" (no open space found: viewpoints anywhere)");
       std::printf("%s\n", missed_at[row.cell].c_str());
     }
-  std::printf("bundle %s: %zu polygons, %zu cells, %zu portals, %zu leaks\n", args.bundle.c_str(), r.polygons,
-              r.cells, r.portals, graph.leaks.size());
+  std::printf("bundle %s: %zu polygons, %zu cells judged (%zu off the walk), %zu portals, leak path %s\n",
+              args.bundle.c_str(), r.polygons, r.cells, off_walk, r.portals,
+              b->leak_path().empty() ? "none" : (std::to_string(b->leak_path().size()) + " points").c_str());
   std::printf(
       "viewpoints per cell %d at %dx%d x6, dense %d^3 and %zu beside portals in all at %dx%d x6 (%.1f s)\n",
       args.options.viewpoints, args.options.resolution, args.options.resolution, args.options.dense,

@@ -65,7 +65,10 @@ PlaneScore score_plane(const AxialPlane& plane, const Box& cell,
                        double needed) {
   PlaneScore s;
   std::size_t front = 0, back = 0, split = 0;
+  std::size_t counted = 0;
   for (const auto id : cell_polygons) {
+    if (polygons[id].detail) continue;  // detail never shapes cells
+    ++counted;
     const auto& b = polygons[id].box;
     const bool ahead = b.max[plane.axis] > plane.coord + kSideTolerance;
     const bool behind = b.min[plane.axis] < plane.coord - kSideTolerance;
@@ -78,7 +81,7 @@ PlaneScore score_plane(const AxialPlane& plane, const Box& cell,
   }
   const double f = double(front + split), k = double(back + split);
   s.balance = f + k > 0.0 ? 1.0 - std::abs(f - k) / (f + k) : 0.0;
-  s.split = cell_polygons.empty() ? 1.0 : 1.0 - double(split) / double(cell_polygons.size());
+  s.split = counted == 0 ? 1.0 : 1.0 - double(split) / double(counted);
   const double rest = config.w_balance * s.balance + config.w_split * s.split;
   if (config.w_occlusion + rest > needed) s.occlusion = occlusion_fraction(plane, cell, polygons);
   s.priority = config.w_occlusion * s.occlusion + config.w_balance * s.balance + config.w_split * s.split;

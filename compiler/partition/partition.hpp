@@ -1,6 +1,7 @@
 #pragma once
 // Airey's model-space subdivision: candidate axial splitting planes taken from the model's axial polygons,
-// each scored by partition priority = w_o*occlusion + w_b*balance + w_s*split (each 0..1), recursing on the
+// (structure only: VisPolygon::detail items are neither candidates nor counted) each scored by partition
+// priority = w_o*occlusion + w_b*balance + w_s*split (each 0..1), recursing on the
 // best plane until none scores above the threshold or the depth limit is reached. Leaves are cells.
 #include <cstdint>
 #include <vector>
@@ -21,8 +22,8 @@ struct AxialPlane {
 
 struct PlaneScore {
   double occlusion = 0.0;  // fraction of the cell's cross-section covered by opaque polygons in the plane
-  double balance = 0.0;    // 1 - |front - back| / (front + back) polygons
-  double split = 0.0;      // 1 - split polygons / polygons in the cell
+  double balance = 0.0;    // 1 - |front - back| / (front + back) structure polygons
+  double split = 0.0;      // 1 - split structure polygons / structure polygons in the cell
   double priority = 0.0;
 };
 

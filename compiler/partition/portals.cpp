@@ -12,6 +12,10 @@ namespace {
 // Cell faces within this (metres) of each other are the same plane: they come from one split coordinate,
 // so they agree exactly; the tolerance only absorbs nothing-but-rounding.
 constexpr double kFaceTolerance = 1e-9;
+// Glass this close to a face (metres: a thick wall) closes the face where it covers it: a pane set in a
+// window's reveal closes the hole in the wall's faces. Glass hides nothing, so this only decides where the
+// inside flood and the leak check may pass, never what is seen.
+constexpr double kGlassReach = 0.5;
 // Openings smaller than this (m^2) after crack removal are ignored (1 cm^2: a pixel at most).
 constexpr double kMinOpeningArea = 1e-4;
 
@@ -59,8 +63,12 @@ FaceClosers face_closers(const Box& face, int axis, double coord, const Partitio
       (polygons[id].normal[axis] < 0.0 ? minus_ids : plus_ids).push_back(id);
     k.minus = union_of(minus_ids, polygons, axis, &face);
     k.plus = union_of(plus_ids, polygons, axis, &face);
-    k.glass = union_of(plane->glass, polygons, axis, &face);
   }
+  std::vector<std::uint32_t> glass;
+  for (const auto& p : part.planes)
+    if (p.axis == axis && std::abs(p.coord - coord) <= kGlassReach)
+      glass.insert(glass.end(), p.glass.begin(), p.glass.end());
+  k.glass = union_of(glass, polygons, axis, &face);
   return k;
 }
 

@@ -277,7 +277,7 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
   if (!t) return;
   t->only({"w_occlusion", "w_balance", "w_split", "threshold", "max_depth", "min_cell_size", "method",
            "sample_points", "rays_per_point", "flow_budget", "ray_caster", "cull_back_faces", "occluders",
-           "proof_pairs"});
+           "proof_pairs", "detail_extent", "detail_area", "structure", "detail"});
   auto& v = cfg.visibility;
   v.cull_back_faces = t->boolean("cull_back_faces").value_or(v.cull_back_faces);
   v.occluders = t->boolean("occluders").value_or(v.occluders);
@@ -312,6 +312,13 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
     v.flow_budget = static_cast<std::uint64_t>(*b);
   }
   read_ray_caster(*t, cfg, "visibility", v.ray_caster);
+  v.detail_extent = t->number("detail_extent").value_or(v.detail_extent);
+  if (!(v.detail_extent >= 0.0)) t->fail("detail_extent", "must be 0 (no detail by size) or more, in metres");
+  v.detail_area = t->number("detail_area").value_or(v.detail_area);
+  if (!(v.detail_area >= 0.0))
+    t->fail("detail_area", "must be 0 (no detail by area) or more, in square metres");
+  if (t->has("structure")) v.structure_groups = compile_regex(*t, "structure");
+  if (t->has("detail")) v.detail_groups = compile_regex(*t, "detail");
 }
 
 }  // namespace

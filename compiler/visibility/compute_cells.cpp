@@ -8,9 +8,11 @@
 #include <iterator>
 
 #include "compiler/visibility/draw_order.hpp"
+#include "compiler/visibility/inside_flood.hpp"
 #include "compiler/visibility/parallel_for.hpp"
 #include "compiler/visibility/pvs_flow.hpp"
 #include "compiler/visibility/pvs_sampled.hpp"
+#include "compiler/visibility/vis_items.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -41,6 +43,8 @@ void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32
       exits.push_back({portal.hull, portal.out_of(static_cast<std::uint32_t>(c))});
     }
     std::erase_if(r.pvs[c], [&](std::uint32_t p) {
+      // Detail is kept whole: proving a cluster hidden costs more than drawing it.
+      if (r.polygons[p].detail) return false;
       if (std::binary_search(sampled[c].begin(), sampled[c].end(), p)) return false;
       return prover.prove(box, exits, p, options, &stats[c]) == Verdict::Hidden;
     });
@@ -52,40 +56,74 @@ void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32
 
 std::string VisibilityResult::summary() const {
   std::size_t total = 0, worst = 0;
-  for (const auto& p : pvs) {
+  std::size_t walked = 0;
+  for (std::size_t c = 0; c < pvs.size(); ++c) {
+    if (!inside[c]) continue;
+    const auto& p = pvs[c];
+    ++walked;
     total += p.size();
     worst = std::max(worst, p.size());
   }
-  const double avg = pvs.empty() ? 0.0 : double(total) / double(pvs.size());
+  const double avg = walked == 0 ? 0.0 : double(total) / double(walked);
   return fmt::format(
-      "{} cells (depth {}, {} candidate planes), {} portals, {} leaks, PVS avg {:.0f} worst {} of {} "
-      "polygons; "
+      "{} structure polygons, {} detail polygons in {} clusters; "
+      "{} cells ({} outside; depth {}, {} candidate planes), {} portals, {} leaks, PVS avg {:.0f} worst {} "
+      "of {} "
+      "items; "
       "flow {} steps, {} fallbacks, {} occluded; {} sample rays; {} back faces dropped; "
       "proofs {} tried, {} hidden, {} seen, {} undecided in {} pairs; "
       "partition {:.2f} s portals {:.2f} s pvs {:.2f} s (proofs {:.2f} s)",
-      partition.cells.size(), partition.depth, partition.candidates, graph.portals.size(), graph.leaks.size(),
-      avg, worst, polygons.size(), flow_steps, flow_fallbacks, flow_occluded, sample_rays, back_faces_dropped,
-      proofs.tried, proofs.hidden, proofs.visible, proofs.undecided, proofs.pairs, seconds_partition,
-      seconds_portals, seconds_pvs, seconds_proofs);
+      structure_items, detail_polygons, polygons.size() - structure_items, partition.cells.size(),
+      std::count(inside.begin(), inside.end(), 0), partition.depth, partition.candidates,
+      graph.portals.size(), leaks.size(), avg, worst, polygons.size(), flow_steps, flow_fallbacks,
+      flow_occluded, sample_rays, back_faces_dropped, proofs.tried, proofs.hidden, proofs.visible,
+      proofs.undecided, proofs.pairs, seconds_partition, seconds_portals, seconds_pvs, seconds_proofs);
+}
+
+std::vector<std::uint32_t> VisibilityResult::polygon_pvs(std::size_t cell) const {
+  std::vector<std::uint32_t> out;
+  for (const auto item : pvs[cell])
+    out.insert(out.end(), item_polygons[item].begin(), item_polygons[item].end());
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertices,
                                     std::span<const std::uint32_t> indices,
                                     std::span<const model::PolygonRecord> polygons,
-                                    const VisibilityConfig& config) {
+                                    const VisibilityConfig& config,
+                                    std::span<const std::string> group_names) {
   VisibilityResult r;
   auto t = std::chrono::steady_clock::now();
-  r.polygons = vis_polygons(vertices, indices, polygons);
+  {
+    std::vector<VisPolygon> drawn = vis_polygons(vertices, indices, polygons);
+    const std::vector<char> structure = structure_polygons(drawn, polygons, group_names, config);
+    VisItems items = make_vis_items(std::move(drawn), polygons, structure);
+    r.polygons = std::move(items.items);
+    r.item_polygons = std::move(items.polygons);
+    r.structure_items = items.structure;
+    r.detail_polygons = items.detail_polygons;
+  }
   r.partition = build_partition(r.polygons, config);
   r.seconds_partition = since(t);
   t = std::chrono::steady_clock::now();
   r.graph = find_portals(r.partition, r.polygons, config.cull_back_faces);
   r.seconds_portals = since(t);
-  for (const auto& leak : r.graph.leaks)
-    spdlog::debug("leak: {:.3f} m2 open to the outside at local ({:.3f}, {:.3f}, {:.3f}) in cell {}",
-                  leak.area, leak.where.x, leak.where.y, leak.where.z, leak.cell);
+  {
+    InsideFlood flood = flood_inside(r.partition, r.graph, config.seeds);
+    r.inside = std::move(flood.inside);
+    r.seeded = flood.seeds > 0;
+    if (r.seeded) {
+      r.leaks = std::move(flood.leaks);
+    } else {
+      for (const auto& leak : r.graph.leaks) r.leaks.push_back({{leak.where}, leak.area});
+      std::sort(r.leaks.begin(), r.leaks.end(),
+                [](const LeakPath& a, const LeakPath& b) { return a.area > b.area; });
+    }
+  }
   t = std::chrono::steady_clock::now();
   const std::size_t n = r.partition.cells.size();
+  const bool some_outside = std::find(r.inside.begin(), r.inside.end(), 0) != r.inside.end();
   std::vector<std::vector<std::uint32_t>> sampled, flow_polys;
   std::unique_ptr<RayCaster> caster;
   if (config.method == PvsMethod::Sampled || config.method == PvsMethod::Combined) {
@@ -93,23 +131,44 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     for (std::uint32_t p = 0; p < r.polygons.size(); ++p)
       for (const auto& tri : r.polygons[p].triangles) triangles.push_back({tri[0], tri[1], tri[2], p});
     caster = make_ray_caster(config.ray_caster, triangles);
-    sampled = sampled_pvs(
-        r.partition, r.graph, r.polygons, *caster,
-        {config.sample_points, config.rays_per_point, config.seed, config.threads, config.cull_back_faces},
-        &r.sample_rays);
+    sampled = sampled_pvs(r.partition, r.graph, r.polygons, *caster,
+                          {config.sample_points, config.rays_per_point, config.seed, config.threads,
+                           config.cull_back_faces, r.inside},
+                          &r.sample_rays);
   }
   if (config.method != PvsMethod::Sampled) {
-    FlowPvs flow =
-        portal_flow_pvs(r.partition, r.graph, r.polygons,
-                        {config.flow_budget, config.threads, config.occluders, config.cull_back_faces});
-    r.flow_steps = flow.steps;
-    r.flow_occluded = flow.occluded;
-    r.flow_fallbacks = flow.fallbacks;
-    r.flow_cells = std::move(flow.cells);
-    flow_polys = std::move(flow.polygons);
+    FlowOptions options{config.flow_budget, config.threads, config.occluders, config.cull_back_faces, {}};
+    if (!some_outside) {
+      FlowPvs flow = portal_flow_pvs(r.partition, r.graph, r.polygons, options);
+      r.flow_cells = std::move(flow.cells);
+      flow_polys = std::move(flow.polygons);
+      r.flow_steps = flow.steps;
+      r.flow_occluded = flow.occluded;
+      r.flow_fallbacks = flow.fallbacks;
+    } else {
+      // The outside cells as one node: a sight line out of a window meets the other openings directly.
+      const MergedCells merged = merge_outside(r.partition, r.graph, r.inside);
+      options.sources.assign(merged.cells_of.size(), 1);
+      options.sources[merged.outside] = 0;
+      FlowPvs flow = portal_flow_pvs(merged.partition, merged.graph, r.polygons, options);
+      r.flow_cells.assign(n, {});
+      flow_polys.assign(n, {});
+      for (std::size_t c = 0; c < n; ++c) {
+        if (!r.inside[c]) continue;
+        const std::uint32_t node = merged.node_of[c];
+        for (const auto d : flow.cells[node])
+          r.flow_cells[c].insert(r.flow_cells[c].end(), merged.cells_of[d].begin(), merged.cells_of[d].end());
+        std::sort(r.flow_cells[c].begin(), r.flow_cells[c].end());
+        flow_polys[c] = std::move(flow.polygons[node]);
+      }
+      r.flow_steps = flow.steps;
+      r.flow_occluded = flow.occluded;
+      r.flow_fallbacks = flow.fallbacks;
+    }
   }
   r.pvs.resize(n);
   for (std::size_t c = 0; c < n; ++c) {
+    if (!r.inside[c]) continue;  // off the walk: the renderer draws everything there
     switch (config.method) {
       case PvsMethod::Sampled:
         r.pvs[c] = std::move(sampled[c]);
@@ -144,7 +203,23 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
 }
 
 CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfig& config) {
-  const VisibilityResult r = compute_visibility(out.vertices, out.indices, out.polygons, config);
+  std::vector<std::string> group_names;
+  for (const auto& g : out.groups) group_names.emplace_back(out.strings.c_str() + g.name);
+  const VisibilityResult r = compute_visibility(out.vertices, out.indices, out.polygons, config, group_names);
+  out.clusters.clear();
+  out.cluster_polygons.clear();
+  for (std::size_t i = 0; i < r.polygons.size(); ++i) {
+    model::ClusterRecord k{};
+    for (int a = 0; a < 3; ++a) {
+      k.bounds_min[a] = static_cast<float>(r.polygons[i].box.min[a]);
+      k.bounds_max[a] = static_cast<float>(r.polygons[i].box.max[a]);
+    }
+    k.polygon_first = static_cast<std::uint32_t>(out.cluster_polygons.size());
+    k.polygon_count = static_cast<std::uint32_t>(r.item_polygons[i].size());
+    out.cluster_polygons.insert(out.cluster_polygons.end(), r.item_polygons[i].begin(),
+                                r.item_polygons[i].end());
+    out.clusters.push_back(k);
+  }
   out.cells.clear();
   out.nodes = r.partition.nodes;
   out.pvs.clear();
@@ -156,16 +231,26 @@ CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfi
     }
     rec.pvs_first = static_cast<std::uint32_t>(out.pvs.size());
     rec.pvs_count = static_cast<std::uint32_t>(r.pvs[c].size());
+    rec.flags = r.inside[c] ? 0u : model::kCellOutside;
     out.pvs.insert(out.pvs.end(), r.pvs[c].begin(), r.pvs[c].end());
     out.cells.push_back(rec);
   }
-  // The largest few openings are named; the count is in the stage detail.
-  auto leaks = r.graph.leaks;
-  std::sort(leaks.begin(), leaks.end(), [](const Leak& a, const Leak& b) { return a.area > b.area; });
-  for (std::size_t i = 0; i < std::min<std::size_t>(leaks.size(), 3); ++i)
-    spdlog::warn("visibility: leak to the outside, {:.4f} m2 at world ({:.3f}, {:.3f}, {:.3f})",
-                 leaks[i].area, leaks[i].where.x + out.meta.origin[0], leaks[i].where.y + out.meta.origin[1],
-                 leaks[i].where.z + out.meta.origin[2]);
+  // The largest few openings are named, with the way in from a seed; the count is in the stage detail.
+  auto world = [&](const model::Vec3& p) {
+    return fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x + out.meta.origin[0], p.y + out.meta.origin[1],
+                       p.z + out.meta.origin[2]);
+  };
+  for (std::size_t i = 0; i < std::min<std::size_t>(r.leaks.size(), 3); ++i) {
+    const LeakPath& leak = r.leaks[i];
+    std::string path;
+    for (const auto& p : leak.points) path += (path.empty() ? "" : " -> ") + world(p);
+    spdlog::warn("visibility: leak to the outside, {:.4f} m2 at world {}{}", leak.area,
+                 world(leak.points.back()), r.seeded ? "; path from inside: " + path : std::string());
+  }
+  out.leak_path.clear();
+  if (r.seeded && !r.leaks.empty())
+    for (const auto& p : r.leaks.front().points)
+      out.leak_path.push_back({float(p.x), float(p.y), float(p.z)});
   const DrawOrderCounts order = order_for_cells(out);
   return {out.polygons.size(), out.cells.size(),
           std::string(pvs_method_name(config.method)) + ": " + r.summary() +

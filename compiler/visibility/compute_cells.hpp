@@ -7,16 +7,25 @@
 
 #include "compiler/partition/portals.hpp"
 #include "compiler/visibility/hidden_proof.hpp"
+#include "compiler/visibility/inside_flood.hpp"
 #include "compiler/visibility/visibility_config.hpp"
 #include "model/bundle.hpp"
 
 namespace walk::compiler {
 
 struct VisibilityResult {
+  // The items the stage worked on (vis_items.hpp): structure polygons, then detail clusters. Every id
+  // below (cell polygons, PVS, portal flow) is an item id; item_polygons maps items to bundle polygons.
   std::vector<VisPolygon> polygons;
+  std::vector<std::vector<std::uint32_t>> item_polygons;
+  std::size_t structure_items = 0;
+  std::size_t detail_polygons = 0;
   Partition partition;
   PortalGraph graph;
-  std::vector<std::vector<std::uint32_t>> pvs;         // per cell, sorted polygon ids, by config.method
+  std::vector<char> inside;     // per cell: reached by the inside flood (all, without seeds)
+  bool seeded = false;          // the flood had seeds
+  std::vector<LeakPath> leaks;  // largest first; without seeds, every open part of the outer boundary
+  std::vector<std::vector<std::uint32_t>> pvs;  // per cell, sorted item ids, by config.method (empty outside)
   std::vector<std::vector<std::uint32_t>> flow_cells;  // per cell, cells reached by portal flow (not Sampled)
   std::uint64_t flow_steps = 0;
   std::uint32_t flow_fallbacks = 0;
@@ -26,13 +35,17 @@ struct VisibilityResult {
   ProofStats proofs;                     // hidden-polygon proofs of the combined PVS
   double seconds_partition = 0.0, seconds_portals = 0.0, seconds_pvs = 0.0, seconds_proofs = 0.0;
   [[nodiscard]] std::string summary() const;  // one line for the stage record and logs
+  // The bundle polygons of a cell's PVS, sorted.
+  [[nodiscard]] std::vector<std::uint32_t> polygon_pvs(std::size_t cell) const;
 };
 
-// Everything from the drawn polygons (local coordinates, as in the bundle).
+// Everything from the drawn polygons (local coordinates, as in the bundle). `group_names` (by group index)
+// feed the scene's structure and detail patterns.
 [[nodiscard]] VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertices,
                                                   std::span<const std::uint32_t> indices,
                                                   std::span<const model::PolygonRecord> polygons,
-                                                  const VisibilityConfig& config);
+                                                  const VisibilityConfig& config,
+                                                  std::span<const std::string> group_names = {});
 
 struct CellsStageCounts {
   std::uint64_t polygons_in = 0;

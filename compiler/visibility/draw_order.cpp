@@ -36,8 +36,8 @@ std::uint64_t count_draw_ranges(const model::BundleContents& b) {
   for (const auto& cell : b.cells) {
     for (bool glass : {false, true}) {
       spans.clear();
-      for (std::uint32_t k = cell.pvs_first; k < cell.pvs_first + cell.pvs_count; ++k) {
-        const auto& p = b.polygons[b.pvs[k]];
+      for (const auto id : model::cell_polygons(cell, b.pvs, b.clusters, b.cluster_polygons)) {
+        const auto& p = b.polygons[id];
         if (is_glass(p) == glass && p.index_count > 0)
           spans.emplace_back(p.first_index, p.first_index + p.index_count);
       }
@@ -59,8 +59,8 @@ DrawOrderCounts order_for_cells(model::BundleContents& out) {
   const std::size_t words = (cells + 63) / 64;
   std::vector<std::uint64_t> member(n * words, 0);
   for (std::size_t c = 0; c < cells; ++c)
-    for (std::uint32_t k = out.cells[c].pvs_first; k < out.cells[c].pvs_first + out.cells[c].pvs_count; ++k)
-      member[out.pvs[k] * words + c / 64] |= std::uint64_t(1) << (63 - c % 64);
+    for (const auto id : model::cell_polygons(out.cells[c], out.pvs, out.clusters, out.cluster_polygons))
+      member[id * words + c / 64] |= std::uint64_t(1) << (63 - c % 64);
   // Sorted in reflected Gray-code order rather than plainly: neighbours in that order tend to differ in one
   // cell, so a cell's polygons break into fewer runs (house at 21 cells: 566 ranges in id order, 193 sorted
   // plainly, 179 in Gray order). A key's Gray rank is the prefix XOR of its membership bits.

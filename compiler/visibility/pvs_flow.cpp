@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "compiler/visibility/parallel_for.hpp"
+#include "compiler/visibility/vis_items.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -80,7 +81,11 @@ class Flow {
  public:
   Flow(const Partition& part, const FlowGraph& graph, const std::vector<VisPolygon>& polys,
        const FlowOptions& options)
-      : part_(part), graph_(graph), polys_(polys), budget_(options.budget), cull_(options.cull_back_faces) {}
+      : part_(part), graph_(graph), polys_(polys), budget_(options.budget), cull_(options.cull_back_faces) {
+    corners_.resize(polys.size());
+    for (std::size_t p = 0; p < polys.size(); ++p)
+      if (polys[p].detail) corners_[p] = box_corners(polys[p].box);
+  }
 
   void run(std::uint32_t cell, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& visible,
            std::uint64_t& steps, std::uint64_t& occluded, bool& fell_back) {
@@ -153,6 +158,10 @@ class Flow {
     return !clip_front_all(std::move(w), planes).empty();
   }
 
+  // What an occluder must hide of item p: its hull, or a detail cluster's box corners (the occluder test
+  // projects points from the light, and a convex set's projection is the hull of its corners' ones).
+  const Winding& outline(std::uint32_t p) const { return polys_[p].detail ? corners_[p] : polys_[p].hull; }
+
   // Is `w` (in `cell` or on its boundary) wholly hidden behind one of the cell's occluders from `light`,
   // a portal every sight line into the cell crosses?
   bool occluded(const Winding& w, std::uint32_t cell, const Winding& light) {
@@ -177,16 +186,21 @@ class Flow {
     if (!pass) {
       // The cell just beyond the first portal: anything in it may be seen, unless an occluder hides it.
       for (const auto p : part_.cell_polygons[cell])
-        if (!seen_poly_[p] && !occluded(polys_[p].hull, cell, light)) see_polygon(p);
+        if (!seen_poly_[p] && !occluded(outline(p), cell, light)) see_polygon(p);
     } else {
       separating_planes(source, *pass, false, seps);
       separating_planes(*pass, source, true, seps);
       std::vector<Plane> test = seps;
       test.push_back(*pass_plane);
       test.push_back(source_plane_);
-      for (const auto p : part_.cell_polygons[cell])
-        if (!seen_poly_[p] && survives(polys_[p].hull, test) && !occluded(polys_[p].hull, cell, light))
-          see_polygon(p);
+      for (const auto p : part_.cell_polygons[cell]) {
+        if (seen_poly_[p]) continue;
+        const VisPolygon& item = polys_[p];
+        // A detail cluster by its box.
+        const bool seen = (item.detail ? box_meets_region(item.box, test) : survives(item.hull, test)) &&
+                          !occluded(outline(p), cell, light);
+        if (seen) see_polygon(p);
+      }
     }
     on_stack_[cell] = 1;
     Bits next_might(might.size());
@@ -219,6 +233,7 @@ class Flow {
   const Partition& part_;
   const FlowGraph& graph_;
   const std::vector<VisPolygon>& polys_;
+  std::vector<Winding> corners_;  // detail clusters' box corners
   std::uint64_t budget_;
   bool cull_;
   std::uint64_t occluded_ = 0;
@@ -241,6 +256,7 @@ FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
   std::vector<char> fell(n, 0);
   const FlowGraph flow_graph(partition, graph, polygons, options.occluders);
   parallel_for(n, options.threads, [&](std::size_t c) {
+    if (!options.sources.empty() && !options.sources[c]) return;
     Flow flow(partition, flow_graph, polygons, options);
     bool fb = false;
     flow.run(static_cast<std::uint32_t>(c), r.cells[c], r.polygons[c], steps[c], occluded[c], fb);

@@ -26,6 +26,7 @@ struct FlowOptions {
   unsigned threads = 0;
   bool occluders = true;        // single-occluder culling inside cells
   bool cull_back_faces = true;  // occluders block only sight lines meeting their front
+  std::vector<char> sources;    // per cell, 0: no flow from it (an outside cell); empty: every cell
 };
 
 [[nodiscard]] FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,

@@ -54,6 +54,7 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
   std::vector<std::vector<std::uint32_t>> out(part.cells.size());
   std::atomic<std::uint64_t> cast{0};
   parallel_for(part.cells.size(), options.threads, [&](std::size_t c) {
+    if (!options.cells.empty() && !options.cells[c]) return;
     std::mt19937_64 rng(options.seed * 0x9E3779B97F4A7C15ull + c);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<char> seen(polygons.size(), 0);

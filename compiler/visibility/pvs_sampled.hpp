@@ -16,6 +16,7 @@ struct SampledPvsOptions {
   std::uint64_t seed = 1;
   unsigned threads = 0;
   bool cull_back_faces = false;  // sight lines pass polygons met from behind (the renderer culls them)
+  std::vector<char> cells;       // per cell, 0: leave it out (an outside cell); empty: every cell
 };
 
 [[nodiscard]] std::vector<std::vector<std::uint32_t>> sampled_pvs(

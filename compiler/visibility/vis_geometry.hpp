@@ -64,8 +64,9 @@ struct VisPolygon {
   Box box;
   bool opaque = false;  // blocks sight lines (glass does not)
   bool glass = false;
-  int axis = -1;       // 0..2 when the polygon lies in an axial plane
-  double coord = 0.0;  // its plane's coordinate on that axis
+  bool detail = false;  // a detail cluster (vis_items.hpp): seen by its box, hides nothing, splits nothing
+  int axis = -1;        // 0..2 when the polygon lies in an axial plane
+  double coord = 0.0;   // its plane's coordinate on that axis
 };
 
 // Area of a planar winding (m^2), measured about the unit `normal` of its plane.

@@ -39,7 +39,7 @@ Judged judge(const MiniBuilding& m, PvsMethod method, bool cull_back_faces = fal
   for (std::uint32_t c = 0; c < j.vis.partition.cells.size(); ++c) {
     const CellViews v =
         judge.views(j.vis.partition.cells[c], c, portal_viewpoints(j.vis.graph, j.vis.partition.cells[c], c));
-    j.missed += judge.missed(v, j.vis.pvs[c]);
+    j.missed += judge.missed(v, j.vis.polygon_pvs(c));
     j.exact.push_back(v.exact);
   }
   return j;
@@ -79,7 +79,8 @@ TEST(Pvs, DoorInAThinWallConservativeMissesNothing) {
     EXPECT_EQ(j.vis.partition.cells.size(), 2u) << pvs_method_name(method);
     EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
     for (std::size_t c = 0; c < j.exact.size(); ++c)
-      for (const auto p : j.exact[c]) EXPECT_TRUE(has(j.vis.pvs[c], p)) << "cell " << c << " polygon " << p;
+      for (const auto p : j.exact[c])
+        EXPECT_TRUE(has(j.vis.polygon_pvs(c), p)) << "cell " << c << " polygon " << p;
   }
 }
 
@@ -92,8 +93,8 @@ TEST(Pvs, SealedCellSeesNothingBeyondItsWalls) {
   EXPECT_EQ(j.missed, 0u);
   // The far end wall (x = 8) is in the second cell only.
   const std::uint32_t first = locate(j.vis.partition.nodes, {1, 1, 1});
-  EXPECT_FALSE(has(j.vis.pvs[first], far[0]));
-  EXPECT_TRUE(has(j.vis.pvs[1 - first], far[0]));
+  EXPECT_FALSE(has(j.vis.polygon_pvs(first), far[0]));
+  EXPECT_TRUE(has(j.vis.polygon_pvs(1 - first), far[0]));
 }
 
 TEST(Pvs, SeparatingPlanesCullWhatNoDoorSequenceShows) {
@@ -115,8 +116,8 @@ TEST(Pvs, SeparatingPlanesCullWhatNoDoorSequenceShows) {
   EXPECT_EQ(cons.missed, 0u);
   EXPECT_EQ(cells.missed, 0u);
   std::size_t cons_total = 0, cells_total = 0;
-  for (const auto& p : cons.vis.pvs) cons_total += p.size();
-  for (const auto& p : cells.vis.pvs) cells_total += p.size();
+  for (std::size_t c = 0; c < cons.vis.pvs.size(); ++c) cons_total += cons.vis.polygon_pvs(c).size();
+  for (std::size_t c = 0; c < cells.vis.pvs.size(); ++c) cells_total += cells.vis.polygon_pvs(c).size();
   EXPECT_LE(cons_total, cells_total);
 }
 
@@ -138,12 +139,13 @@ TEST(Pvs, FlowPastItsBudgetTakesWhatItsPortalsMightSee) {
     std::uint64_t missed = 0;
     for (std::uint32_t c = 0; c < 4; ++c) {
       const Box& box = cut.partition.cells[c];
-      missed += judge.missed(judge.views(box, c, portal_viewpoints(cut.graph, box, c)), cut.pvs[c]);
-      for (const auto p : full.pvs[c]) EXPECT_TRUE(has(cut.pvs[c], p)) << "cell " << c << " polygon " << p;
+      missed += judge.missed(judge.views(box, c, portal_viewpoints(cut.graph, box, c)), cut.polygon_pvs(c));
+      for (const auto p : full.polygon_pvs(c))
+        EXPECT_TRUE(has(cut.polygon_pvs(c), p)) << "cell " << c << " polygon " << p;
     }
     EXPECT_EQ(missed, 0u);
     const std::uint32_t first = locate(cut.partition.nodes, {1, 1, 1});
-    EXPECT_EQ(has(cut.pvs[first], far[0]), !sealed) << "the far end wall from the first room";
+    EXPECT_EQ(has(cut.polygon_pvs(first), far[0]), !sealed) << "the far end wall from the first room";
   }
 }
 
@@ -172,10 +174,11 @@ TEST(Pvs, SourceNarrowsToWhatSeesThroughEachDoor) {
     EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
     const std::uint32_t a = locate(j.vis.partition.nodes, {0.5, 5.0, 1.0});
     const std::uint32_t e = locate(j.vis.partition.nodes, {9.0, 5.0, 1.0});
-    EXPECT_FALSE(has(j.vis.pvs[a], far_wall)) << pvs_method_name(method);
-    EXPECT_TRUE(has(j.vis.pvs[e], far_wall));
+    EXPECT_FALSE(has(j.vis.polygon_pvs(a), far_wall)) << pvs_method_name(method);
+    EXPECT_TRUE(has(j.vis.polygon_pvs(e), far_wall));
     for (std::size_t c = 0; c < j.exact.size(); ++c)
-      for (const auto p : j.exact[c]) EXPECT_TRUE(has(j.vis.pvs[c], p)) << "cell " << c << " polygon " << p;
+      for (const auto p : j.exact[c])
+        EXPECT_TRUE(has(j.vis.polygon_pvs(c), p)) << "cell " << c << " polygon " << p;
   }
 }
 
@@ -199,17 +202,20 @@ TEST(Pvs, AWallInsideACellHidesWhatLiesBehindIt) {
     VisibilityConfig config = test_config(PvsMethod::Combined, true);
     config.occluders = occluders;
     config.proof_pairs = proof_pairs;
+    config.detail_area = 0.0;  // the box is structure here: the proof tries structure only
     const VisibilityResult vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
     const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(true));
     std::uint64_t missed = 0;
     for (std::uint32_t cell = 0; cell < vis.partition.cells.size(); ++cell) {
       const Box& box = vis.partition.cells[cell];
-      missed += judge.missed(judge.views(box, cell, portal_viewpoints(vis.graph, box, cell)), vis.pvs[cell]);
+      missed += judge.missed(judge.views(box, cell, portal_viewpoints(vis.graph, box, cell)),
+                             vis.polygon_pvs(cell));
     }
     EXPECT_EQ(missed, 0u) << "occluders " << occluders << " proofs " << proof_pairs;
     const std::uint32_t near_room = locate(vis.partition.nodes, {1, 2, 1});
     std::size_t box_faces = 0;
-    for (std::uint32_t p = first_box; p < end_box; ++p) box_faces += has(vis.pvs[near_room], p) ? 1 : 0;
+    for (std::uint32_t p = first_box; p < end_box; ++p)
+      box_faces += has(vis.polygon_pvs(near_room), p) ? 1 : 0;
     if (occluders) {
       EXPECT_EQ(box_faces, 0u) << "the box behind the wall, from the room with the door";
       EXPECT_GT(vis.flow_occluded, 0u);
@@ -242,7 +248,7 @@ TEST(Pvs, PortalsMeetingAtACellCorner) {
     EXPECT_GE(j.vis.partition.cells.size(), 4u);
     EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
     const std::uint32_t a = locate(j.vis.partition.nodes, {1, 1, 1});
-    EXPECT_TRUE(has(j.vis.pvs[a], marker)) << "the diagonal room is seen across the corner";
+    EXPECT_TRUE(has(j.vis.polygon_pvs(a), marker)) << "the diagonal room is seen across the corner";
   }
 }
 
@@ -269,7 +275,7 @@ TEST(Pvs, StackedStoreysWithAStairwell) {
   EXPECT_TRUE(vertical) << "the stairwell is a horizontal portal of 2 m2";
   EXPECT_EQ(j.missed, 0u);
   const std::uint32_t down = locate(j.vis.partition.nodes, {3, 3, 1});
-  EXPECT_TRUE(has(j.vis.pvs[down], upstairs));
+  EXPECT_TRUE(has(j.vis.polygon_pvs(down), upstairs));
 }
 
 TEST(Pvs, SampledNeverAddsWhatCannotBeSeen) {
@@ -277,7 +283,7 @@ TEST(Pvs, SampledNeverAddsWhatCannotBeSeen) {
   const Judged s = judge(m, PvsMethod::Sampled);
   const Judged c = judge(m, PvsMethod::Conservative);
   for (std::size_t cell = 0; cell < s.vis.pvs.size(); ++cell)
-    for (const auto p : s.vis.pvs[cell]) EXPECT_TRUE(has(c.vis.pvs[cell], p));
+    for (const auto p : s.vis.polygon_pvs(cell)) EXPECT_TRUE(has(c.vis.polygon_pvs(cell), p));
 }
 
 // Two rooms along x (0..4, 4..8) with inward-facing outer walls, split at x = 4 by `divider`: the renderer
@@ -301,9 +307,9 @@ TEST(Pvs, BackToBackWallsSealWhenBackFacesAreCulled) {
     // Room A's PVS: its own five inward faces and the divider's face towards it; not room B's, and not the
     // divider's back (turned away from all of room A).
     const std::uint32_t a = locate(j.vis.partition.nodes, {1, 1, 1});
-    EXPECT_EQ(j.vis.pvs[a].size(), 6u) << pvs_method_name(method);
-    EXPECT_FALSE(has(j.vis.pvs[a], 7u));  // the divider facing B
-    EXPECT_TRUE(has(j.vis.pvs[a], 6u));   // the divider facing A
+    EXPECT_EQ(j.vis.polygon_pvs(a).size(), 6u) << pvs_method_name(method);
+    EXPECT_FALSE(has(j.vis.polygon_pvs(a), 7u));  // the divider facing B
+    EXPECT_TRUE(has(j.vis.polygon_pvs(a), 6u));   // the divider facing A
   }
 }
 
@@ -320,11 +326,12 @@ TEST(Pvs, OneSidedWallIsAOneWayPortal) {
     EXPECT_EQ(j.missed, 0u) << pvs_method_name(method);
     const std::uint32_t a = locate(j.vis.partition.nodes, {1, 1, 1});
     const std::uint32_t b = locate(j.vis.partition.nodes, {6, 1, 1});
-    EXPECT_FALSE(has(j.vis.pvs[a], 1u))
-        << pvs_method_name(method);      // room B's far wall (x = 8), out of room A's sight
-    EXPECT_TRUE(has(j.vis.pvs[b], 0u));  // room A's far wall (x = 0), seen from B through the divider
+    EXPECT_FALSE(has(j.vis.polygon_pvs(a), 1u))
+        << pvs_method_name(method);              // room B's far wall (x = 8), out of room A's sight
+    EXPECT_TRUE(has(j.vis.polygon_pvs(b), 0u));  // room A's far wall (x = 0), seen from B through the divider
     for (std::size_t c = 0; c < j.exact.size(); ++c)
-      for (const auto e : j.exact[c]) EXPECT_TRUE(has(j.vis.pvs[c], e)) << "cell " << c << " polygon " << e;
+      for (const auto e : j.exact[c])
+        EXPECT_TRUE(has(j.vis.polygon_pvs(c), e)) << "cell " << c << " polygon " << e;
   }
   // Drawn from both sides, the divider closes the face both ways: no portal.
   const Judged two_sided = judge(m, PvsMethod::Conservative, false);

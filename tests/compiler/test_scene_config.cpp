@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -134,6 +135,27 @@ TEST_F(SceneConfigTest, ProofPairsAreACountOrNone) {
     const std::string e =
         error_of(std::string("[model]\nfile = \"a.dxf\"\n[visibility]\nproof_pairs = ") + bad + "\n");
     EXPECT_NE(e.find("visibility.proof_pairs"), std::string::npos) << bad << ": " << e;
+  }
+}
+
+TEST_F(SceneConfigTest, DetailRulesAreSizesAndGroupPatterns) {
+  write(
+      "[model]\nfile = \"a.dxf\"\n[visibility]\ndetail_extent = 2.0\ndetail_area = 0\n"
+      "structure = \"^shell\"\ndetail = \"chair|table\"\n");
+  const SceneConfig c = load_scene_config(path_);
+  EXPECT_EQ(c.visibility.detail_extent, 2.0);
+  EXPECT_EQ(c.visibility.detail_area, 0.0);
+  ASSERT_TRUE(c.visibility.structure_groups && c.visibility.detail_groups);
+  EXPECT_TRUE(std::regex_search("shell north", *c.visibility.structure_groups));
+  EXPECT_TRUE(std::regex_search("room 2 table 4", *c.visibility.detail_groups));
+  write("[model]\nfile = \"a.dxf\"\n");
+  EXPECT_FALSE(load_scene_config(path_).visibility.detail_groups);
+  for (const auto& [key, bad] : {std::pair{"detail_extent", "-1"}, std::pair{"detail_area", "-0.5"},
+                                 std::pair{"detail", "\"(chair\""}, std::pair{"structure", "3"}}) {
+    const std::string e =
+        error_of(std::string("[model]\nfile = \"a.dxf\"\n[visibility]\n") + key + " = " + bad + "\n");
+    EXPECT_NE(e.find(std::string("visibility.") + key), std::string::npos)
+        << key << " = " << bad << ": " << e;
   }
 }
 

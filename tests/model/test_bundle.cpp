@@ -1,6 +1,8 @@
 // Bundle round trip and integrity: every corruption is caught at open with a message naming the file.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -184,6 +186,53 @@ TEST_F(BundleTest, CrossReferencesAreValidated) {
   c.nodes.push_back({{1, 0, 0, 0}, 0, -1});  // a node pointing at itself would loop forever
   write_bundle(path_, c);
   EXPECT_NE(open_error().find("NODE"), std::string::npos);
+}
+
+TEST_F(BundleTest, ClustersExpandToTheirPolygonsAndAreValidated) {
+  BundleContents c = small_bundle();
+  c.clusters.push_back({{0, 0, 0}, {1, 1, 0}, 0, 1});
+  c.cluster_polygons = {0};
+  c.cells[0].flags = kCellOutside;
+  c.leak_path = {{0.0f, 0.0f, 0.0f}, {1.0f, 0.5f, 0.0f}};
+  write_bundle(path_, c);
+  {
+    const auto b = Bundle::open(path_);
+    ASSERT_EQ(b->clusters().size(), 1u);
+    EXPECT_EQ(b->cell_polygons(0), std::vector<std::uint32_t>{0});
+    EXPECT_EQ(b->cells()[0].flags, kCellOutside);
+    EXPECT_EQ(b->leak_path().size(), 2u);
+  }
+  c.clusters[0].polygon_count = 2;  // runs past CLPO
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("CLUS"), std::string::npos);
+  c = small_bundle();
+  c.clusters.push_back({{0, 0, 0}, {1, 1, 0}, 0, 1});
+  c.cluster_polygons = {7};  // no such polygon
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("CLPO"), std::string::npos);
+  c.cluster_polygons = {0};
+  c.pvs = {1};  // no such cluster
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("cluster out of range"), std::string::npos);
+  c = small_bundle();
+  c.cells[0].flags = 6;
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("flags"), std::string::npos);
+  c = small_bundle();
+  c.leak_path = {{std::nanf(""), 0.0f, 0.0f}};
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LEAK"), std::string::npos);
+}
+
+TEST_F(BundleTest, AnOlderFormatNamesItsVersionAndTheFix) {
+  write_bundle(path_, small_bundle());
+  std::vector<char> b = bytes();
+  const std::uint32_t old = kBundleVersion - 1;
+  std::memcpy(b.data() + 8, &old, sizeof old);  // FileHeader::version follows the 8-byte magic
+  put(b);
+  const std::string err = open_error();
+  EXPECT_NE(err.find("version " + std::to_string(old)), std::string::npos) << err;
+  EXPECT_NE(err.find("walk compile"), std::string::npos) << err;
 }
 
 TEST_F(BundleTest, FailedWriteLeavesNoFile) {

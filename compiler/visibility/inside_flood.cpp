@@ -1,0 +1,126 @@
+#include "compiler/visibility/inside_flood.hpp"
+
+#include <algorithm>
+#include <deque>
+
+#include "compiler/partition/axial_cover.hpp"
+
+namespace walk::compiler {
+namespace {
+
+model::Vec3 centre_of(const Winding& w) {
+  model::Vec3 c{0.0};
+  for (const auto& p : w) c += p;
+  return w.empty() ? c : c / double(w.size());
+}
+
+// Can a person pass the portal? Its outline's box is at least kFloodMinWidth across both ways in its plane.
+bool walkable(const Portal& p) {
+  const int u = u_axis(p.axis), v = v_axis(p.axis);
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (const auto& q : p.hull)
+    for (int k = 0; k < 2; ++k) {
+      lo[k] = std::min(lo[k], q[k == 0 ? u : v]);
+      hi[k] = std::max(hi[k], q[k == 0 ? u : v]);
+    }
+  return hi[0] - lo[0] >= kFloodMinWidth && hi[1] - lo[1] >= kFloodMinWidth;
+}
+
+}  // namespace
+
+InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<const model::Vec3> seeds) {
+  InsideFlood f;
+  const std::size_t n = part.cells.size();
+  f.seeds = seeds.size();
+  if (seeds.empty()) {
+    f.inside.assign(n, 1);
+    return f;
+  }
+  f.inside.assign(n, 0);
+  // Breadth first, so each leak's path is a shortest one in portals.
+  std::vector<std::uint32_t> via(n, kOutside);  // portal the flood came in through
+  std::vector<std::uint32_t> seed_of(n, 0);
+  std::deque<std::uint32_t> queue;
+  for (std::size_t s = 0; s < seeds.size(); ++s) {
+    const std::uint32_t c = locate(part.nodes, seeds[s]);
+    if (c >= n || f.inside[c]) continue;
+    f.inside[c] = 1;
+    seed_of[c] = static_cast<std::uint32_t>(s);
+    queue.push_back(c);
+  }
+  while (!queue.empty()) {
+    const std::uint32_t c = queue.front();
+    queue.pop_front();
+    for (const auto id : g.cell_portals[c]) {
+      const Portal& p = g.portals[id];
+      if (p.glazed || !walkable(p)) continue;
+      const std::uint32_t d = p.back == c ? p.front : p.back;
+      if (f.inside[d]) continue;
+      f.inside[d] = 1;
+      via[d] = id;
+      seed_of[d] = seed_of[c];
+      queue.push_back(d);
+    }
+  }
+  for (const Leak& leak : g.leaks) {
+    if (!f.inside[leak.cell]) continue;
+    LeakPath path;
+    path.area = leak.area;
+    path.points.push_back(leak.where);
+    for (std::uint32_t c = leak.cell; via[c] != kOutside;) {
+      const Portal& p = g.portals[via[c]];
+      path.points.push_back(centre_of(p.hull));
+      c = p.back == c ? p.front : p.back;
+    }
+    path.points.push_back(seeds[seed_of[leak.cell]]);
+    std::reverse(path.points.begin(), path.points.end());
+    f.leaks.push_back(std::move(path));
+  }
+  std::sort(f.leaks.begin(), f.leaks.end(),
+            [](const LeakPath& a, const LeakPath& b) { return a.area > b.area; });
+  return f;
+}
+
+MergedCells merge_outside(const Partition& part, const PortalGraph& g, const std::vector<char>& inside) {
+  MergedCells m;
+  const std::size_t n = part.cells.size();
+  m.node_of.assign(n, kOutside);
+  for (std::uint32_t c = 0; c < n; ++c)
+    if (inside[c]) {
+      m.node_of[c] = static_cast<std::uint32_t>(m.cells_of.size());
+      m.cells_of.push_back({c});
+      m.partition.cells.push_back(part.cells[c]);
+      m.partition.cell_polygons.push_back(part.cell_polygons[c]);
+    }
+  if (m.cells_of.size() < n) {
+    m.outside = static_cast<std::uint32_t>(m.cells_of.size());
+    m.cells_of.emplace_back();
+    m.partition.cells.push_back(part.bounds);
+    std::vector<std::uint32_t> items;
+    for (std::uint32_t c = 0; c < n; ++c)
+      if (!inside[c]) {
+        m.node_of[c] = m.outside;
+        m.cells_of.back().push_back(c);
+        items.insert(items.end(), part.cell_polygons[c].begin(), part.cell_polygons[c].end());
+      }
+    std::sort(items.begin(), items.end());
+    items.erase(std::unique(items.begin(), items.end()), items.end());
+    m.partition.cell_polygons.push_back(std::move(items));
+  }
+  m.partition.bounds = part.bounds;
+  m.partition.planes = part.planes;
+  m.graph.cell_portals.resize(m.cells_of.size());
+  for (const Portal& p : g.portals) {
+    Portal q = p;
+    q.back = m.node_of[p.back];
+    q.front = m.node_of[p.front];
+    if (q.back == q.front) continue;  // between two outside cells
+    const auto id = static_cast<std::uint32_t>(m.graph.portals.size());
+    m.graph.cell_portals[q.back].push_back(id);
+    m.graph.cell_portals[q.front].push_back(id);
+    m.graph.portals.push_back(std::move(q));
+  }
+  return m;
+}
+
+}  // namespace walk::compiler

@@ -1,0 +1,49 @@
+#pragma once
+// Inside and outside, as qbsp's outside fill does it but from the inside: a flood from seed points (the
+// scene's start, a point below each luminaire) through the open portals a person could pass (not glazed
+// ones: glass closes the envelope; not slits narrower than kFloodMinWidth). Cells it reaches are inside,
+// where a viewer may walk; the rest only the outside reaches and are dropped from the walk. A leak is an
+// opening of the model's outer boundary that the flood reaches, reported with a path of points from a seed to
+// it (qbsp's .pts line).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "compiler/partition/portals.hpp"
+
+namespace walk::compiler {
+
+// The flood passes only portals at least this wide both ways (metres): where a person can walk. The gap
+// where an interior wall meets an outer one opens into the walls' hollow core, not out of the building.
+inline constexpr double kFloodMinWidth = 0.3;
+
+struct LeakPath {
+  std::vector<model::Vec3> points;  // from a seed through portal centres to the opening (local coordinates)
+  double area = 0.0;                // of the opening, m^2
+};
+
+struct InsideFlood {
+  std::vector<char> inside;  // per cell; all inside when there are no seeds
+  std::vector<LeakPath> leaks;
+  std::size_t seeds = 0;
+};
+
+[[nodiscard]] InsideFlood flood_inside(const Partition& partition, const PortalGraph& graph,
+                                       std::span<const model::Vec3> seeds);
+
+// The cells and portals the portal flow runs over when some cells are outside: the outside ones become one
+// node (last), so that a sight line out through one opening meets the others directly rather than through
+// a maze of empty outside cells. Conservative: the merged node is not convex, but the flow's plane tests do
+// not need convex cells, and anything in it may be seen once it is entered.
+struct MergedCells {
+  Partition partition;  // cells, cell_polygons (and planes) for the flow; nodes empty
+  PortalGraph graph;
+  std::vector<std::uint32_t> node_of;                // per original cell: its node
+  std::vector<std::vector<std::uint32_t>> cells_of;  // per node: the original cells
+  std::uint32_t outside = kOutside;                  // the outside node, or kOutside when none
+};
+
+[[nodiscard]] MergedCells merge_outside(const Partition& partition, const PortalGraph& graph,
+                                        const std::vector<char>& inside);
+
+}  // namespace walk::compiler
