@@ -64,38 +64,34 @@ std::vector<char> structure_polygons(const std::vector<VisPolygon>& polygons,
     if (!fresh) it->second = united(it->second, polygons[i].box);
     group_areas[records[i].group].push_back(area[i]);
   }
-  // Per group: 1 structure, 0 detail by the scene's patterns, -1 left to the automatic rule.
-  std::map<std::uint32_t, int> by_pattern;
+  // Per group, first match wins.
+  enum class Kind { Structure, NamedDetail, Object, BySize };
+  std::map<std::uint32_t, Kind> kind_of;
   for (const auto& [group, box] : group_box) {
     const std::string& name = group < group_names.size() ? group_names[group] : std::string();
-    int kind = -1;
+    Kind kind = Kind::BySize;
     if (config.structure_groups && std::regex_search(name, *config.structure_groups))
-      kind = 1;
+      kind = Kind::Structure;
     else if (config.detail_groups && std::regex_search(name, *config.detail_groups))
-      kind = 0;
+      kind = Kind::NamedDetail;
     else {
       // Small, and made of small faces: an object. A small room (a 2.5 m washroom) is made of whole walls.
       auto& areas = group_areas[group];
       const auto mid = areas.begin() + static_cast<std::ptrdiff_t>(areas.size() / 2);
       std::nth_element(areas.begin(), mid, areas.end());
       const model::Vec3 s = box.size();
-      if (std::max({s.x, s.y, s.z}) < config.detail_extent && *mid < kShellFaceArea) kind = 0;
+      if (std::max({s.x, s.y, s.z}) < config.detail_extent && *mid < kShellFaceArea) kind = Kind::Object;
     }
-    by_pattern[group] = kind;
+    kind_of[group] = kind;
   }
   std::vector<char> out(polygons.size(), 0);
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const VisPolygon& p = polygons[i];
     if (p.triangles.empty() || !(p.opaque || p.glass)) continue;
-    const int kind = by_pattern[records[i].group];
-    if (kind == 1 || (kind == -1 && area[i] >= config.detail_area)) out[i] = 1;
+    const Kind kind = kind_of[records[i].group];
     // Glass closes the building's envelope (windows), whatever its group's size.
-    if (kind == 0 && p.glass && area[i] >= config.detail_area &&
-        !(config.detail_groups &&
-          std::regex_search(
-              group_names.size() > records[i].group ? group_names[records[i].group] : std::string(),
-              *config.detail_groups)))
-      out[i] = 1;
+    const bool sized = kind == Kind::BySize || (kind == Kind::Object && p.glass);
+    out[i] = kind == Kind::Structure || (sized && area[i] >= config.detail_area);
   }
   return out;
 }
