@@ -58,7 +58,10 @@ struct Renderer::Impl {
   bool pvs_culling = true;
   bool frustum_culling = false;
   std::vector<Box> boxes;  // per polygon, made when frustum culling is first used
-  DrawList frustum_list;   // this frame's list when frustum culling is on
+  // The frustum test's candidates (the cell's PVS expanded, or every polygon), made when the cell changes.
+  std::optional<std::uint32_t> candidates_cell;
+  std::vector<std::uint32_t> candidates;
+  DrawList frustum_list;  // this frame's list when frustum culling is on
   bool map_overlay = false;
   float map_fraction = 0.35f;
   GLint u_clip_plane = -1;
@@ -413,18 +416,17 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   if (r.frustum_culling) {
     // The PVS's polygons (or all), less those wholly outside this frame's frustum, merged again.
     if (r.boxes.empty()) r.boxes = polygon_boxes(r.bundle.polygons(), r.bundle.vertices());
-    std::span<const std::uint32_t> candidates;
-    std::vector<std::uint32_t> all;
-    if (list_cell < r.bundle.cells().size()) {
-      all = r.bundle.cell_polygons(list_cell);
-      candidates = all;
-    } else {
-      all.resize(r.bundle.polygons().size());
-      for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-      candidates = all;
+    if (r.candidates_cell != list_cell) {
+      if (list_cell < r.bundle.cells().size()) {
+        r.candidates = r.bundle.cell_polygons(list_cell);
+      } else {
+        r.candidates.resize(r.bundle.polygons().size());
+        for (std::uint32_t i = 0; i < r.candidates.size(); ++i) r.candidates[i] = i;
+      }
+      r.candidates_cell = list_cell;
     }
     r.frustum_list =
-        build_draw_list(r.polygons(coarse), in_frustum(view_projection_matrix, r.boxes, candidates));
+        build_draw_list(r.polygons(coarse), in_frustum(view_projection_matrix, r.boxes, r.candidates));
     chosen = &r.frustum_list;
   }
   const DrawList& list = *chosen;

@@ -43,11 +43,15 @@ struct FlowGraph {
   std::vector<std::vector<Directed>> out;  // per cell: portals sight lines may leave it through
   std::vector<std::vector<std::uint32_t>> cells_of_polygon;
   std::vector<std::vector<Occluder>> occluders;  // per cell (empty without occluder culling)
+  std::vector<Winding> corners;                  // per item: a detail cluster's box corners (else empty)
 
   FlowGraph(const Partition& part, const PortalGraph& g, const std::vector<VisPolygon>& polygons,
             bool with_occluders)
       : out(part.cells.size()) {
     if (with_occluders) occluders = cell_occluders(part, polygons);
+    corners.resize(polygons.size());
+    for (std::size_t p = 0; p < polygons.size(); ++p)
+      if (polygons[p].detail) corners[p] = box_corners(polygons[p].box);
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
       for (const auto id : g.cell_portals[c]) {
         const Portal& p = g.portals[id];
@@ -81,11 +85,7 @@ class Flow {
  public:
   Flow(const Partition& part, const FlowGraph& graph, const std::vector<VisPolygon>& polys,
        const FlowOptions& options)
-      : part_(part), graph_(graph), polys_(polys), budget_(options.budget), cull_(options.cull_back_faces) {
-    corners_.resize(polys.size());
-    for (std::size_t p = 0; p < polys.size(); ++p)
-      if (polys[p].detail) corners_[p] = box_corners(polys[p].box);
-  }
+      : part_(part), graph_(graph), polys_(polys), budget_(options.budget), cull_(options.cull_back_faces) {}
 
   void run(std::uint32_t cell, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& visible,
            std::uint64_t& steps, std::uint64_t& occluded, bool& fell_back) {
@@ -160,7 +160,9 @@ class Flow {
 
   // What an occluder must hide of item p: its hull, or a detail cluster's box corners (the occluder test
   // projects points from the light, and a convex set's projection is the hull of its corners' ones).
-  const Winding& outline(std::uint32_t p) const { return polys_[p].detail ? corners_[p] : polys_[p].hull; }
+  const Winding& outline(std::uint32_t p) const {
+    return polys_[p].detail ? graph_.corners[p] : polys_[p].hull;
+  }
 
   // Is `w` (in `cell` or on its boundary) wholly hidden behind one of the cell's occluders from `light`,
   // a portal every sight line into the cell crosses?
@@ -233,7 +235,6 @@ class Flow {
   const Partition& part_;
   const FlowGraph& graph_;
   const std::vector<VisPolygon>& polys_;
-  std::vector<Winding> corners_;  // detail clusters' box corners
   std::uint64_t budget_;
   bool cull_;
   std::uint64_t occluded_ = 0;
