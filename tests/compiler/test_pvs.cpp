@@ -11,20 +11,8 @@ namespace walk::compiler {
 namespace {
 
 using testing::MiniBuilding;
+using testing::small_judge;
 using testing::test_config;
-
-// Small images keep the suite fast; the hard cases are built so that a miss would cover many pixels.
-VerifyOptions small_judge(bool cull_back_faces = false) {
-  VerifyOptions o;
-  o.cull_back_faces = cull_back_faces;
-  o.viewpoints = 3;
-  o.resolution = 48;
-  o.dense = 2;
-  o.dense_resolution = 24;
-  o.ray_caster = test_config(PvsMethod::Conservative, cull_back_faces).ray_caster;  // see test_config
-  o.threads = 1;
-  return o;
-}
 
 struct Judged {
   VisibilityResult vis;

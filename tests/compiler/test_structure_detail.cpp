@@ -81,15 +81,7 @@ TEST(StructureDetail, FurnitureTouchingADoorNeitherSplitsACellNorCoversThePortal
   for (const auto& p : vis.graph.portals) door += p.forward && p.backward ? p.area : 0.0;  // not wall backs
   EXPECT_NEAR(door, 2.0, 1e-6) << "the door is open, the cabinet covers none of it";
   // The cabinet is in both rooms' PVS (it stands in both), and nothing seen is missed.
-  VerifyOptions o;
-  o.cull_back_faces = true;
-  o.viewpoints = 3;
-  o.resolution = 48;
-  o.dense = 2;
-  o.dense_resolution = 24;
-  o.ray_caster = config.ray_caster;
-  o.threads = 1;
-  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, o);
+  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, testing::small_judge(true));
   std::uint64_t missed = 0;
   for (std::uint32_t c = 0; c < 2; ++c) {
     const Box& box = vis.partition.cells[c];

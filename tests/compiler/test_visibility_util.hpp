@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "compiler/visibility/compute_cells.hpp"
+#include "compiler/visibility/verify_visibility.hpp"
 #include "model/bundle.hpp"
 
 namespace walk::compiler::testing {
@@ -95,6 +96,19 @@ inline VisibilityConfig test_config(PvsMethod method = PvsMethod::Conservative,
   // which the axial caster keeps and the skeleton's BVH does not.
   c.ray_caster = cull_back_faces ? "axial" : "bvh";
   return c;
+}
+
+// Small images keep the suite fast; the hard cases are built so that a miss would cover many pixels.
+inline VerifyOptions small_judge(bool cull_back_faces = false) {
+  VerifyOptions o;
+  o.cull_back_faces = cull_back_faces;
+  o.viewpoints = 3;
+  o.resolution = 48;
+  o.dense = 2;
+  o.dense_resolution = 24;
+  o.ray_caster = test_config(PvsMethod::Conservative, cull_back_faces).ray_caster;  // see test_config
+  o.threads = 1;
+  return o;
 }
 
 }  // namespace walk::compiler::testing
