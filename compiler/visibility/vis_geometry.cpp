@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <limits>
 
 namespace walk::compiler {
 
@@ -182,6 +183,20 @@ double winding_area(const Winding& w, const model::Vec3& normal) {
   model::Vec3 sum(0.0);
   for (std::size_t i = 0; i < w.size(); ++i) sum += glm::cross(w[i], w[(i + 1) % w.size()]);
   return 0.5 * std::abs(glm::dot(sum, normal));
+}
+
+double winding_width(const Winding& w) {
+  if (w.size() < 3) return 0.0;
+  double width = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const model::Vec3 a = w[i], edge = w[(i + 1) % w.size()] - a;
+    const double len = glm::length(edge);
+    if (len == 0.0) continue;  // a repeated point: the next edge measures
+    double farthest = 0.0;
+    for (const auto& v : w) farthest = std::max(farthest, glm::length(glm::cross(edge, v - a)) / len);
+    width = std::min(width, farthest);
+  }
+  return std::isfinite(width) ? width : 0.0;
 }
 
 bool fills_hull(const VisPolygon& p) {

@@ -69,6 +69,10 @@ struct VisPolygon {
   double coord = 0.0;   // its plane's coordinate on that axis
 };
 
+// Width of a convex planar winding (m): the least, over its edges, of the farthest vertex from the edge's
+// line. 0 for fewer than three points or collinear ones.
+[[nodiscard]] double winding_width(const Winding& w);
+
 // Area of a planar winding (m^2), measured about the unit `normal` of its plane.
 [[nodiscard]] double winding_area(const Winding& w, const model::Vec3& normal);
 // Does `p` fill its hull? Their areas agree to 1e-6 (a notch or a hole makes the hull larger by its area).

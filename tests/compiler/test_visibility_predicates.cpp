@@ -62,6 +62,20 @@ TEST(VisibilityPredicates, ClipCrossingHalvesTheArea) {
   EXPECT_NEAR(area(diag), 0.5, 1e-12);  // through two opposite corners
 }
 
+TEST(VisibilityPredicates, WindingWidthOfDegenerateAndThinWindings) {
+  EXPECT_EQ(winding_width({}), 0.0);
+  EXPECT_EQ(winding_width({{0, 0, 0}, {1, 0, 0}}), 0.0);             // a segment
+  EXPECT_EQ(winding_width({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}), 0.0);  // collinear
+  EXPECT_EQ(winding_width({{1, 1, 1}, {1, 1, 1}, {1, 1, 1}}), 0.0);  // one point, repeated
+  EXPECT_NEAR(winding_width(kSquare), 1.0, 1e-12);
+  // A 2 m x 1e-5 m strip (what clipping leaves along a plane) and a triangle of height 0.5 over a 1 m base
+  // (its other two sides are 0.71 m from the opposite corner).
+  EXPECT_NEAR(winding_width({{0, 0, 0}, {2, 0, 0}, {2, 1e-5, 0}, {0, 1e-5, 0}}), 1e-5, 1e-12);
+  EXPECT_NEAR(winding_width({{0, 0, 5}, {1, 0, 5}, {0.5, 0.5, 5}}), 0.5, 1e-12);
+  // A repeated vertex does not make a zero-length edge count.
+  EXPECT_NEAR(winding_width({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}), 1.0, 1e-12);
+}
+
 TEST(VisibilityPredicates, HullOfDegeneratePointSets) {
   EXPECT_TRUE(convex_hull({}, {0, 0, 1}).empty());
   EXPECT_EQ(convex_hull({{1, 2, 3}}, {0, 0, 1}).size(), 1u);
