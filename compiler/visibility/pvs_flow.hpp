@@ -4,7 +4,8 @@
 // last portal passed; a cell is reached when some sequence survives to it. Each polygon of a reached cell is
 // then tested against the same planes, which makes the set tight per polygon, not just per cell. With
 // `occluders`, polygons and portals wholly in the umbra of one convex wall inside their cell, seen from the
-// last portal passed, are left out too (occluders.hpp).
+// last portal passed, are left out too (occluders.hpp). A flow past its step budget falls back to a flow
+// over cells only, which stops where no new cell can be reached, and tests items by portal pairs.
 #include <cstdint>
 #include <vector>
 
@@ -17,8 +18,9 @@ struct FlowPvs {
   std::vector<std::vector<std::uint32_t>> cells;     // per cell: cells reached (sorted, itself included)
   std::vector<std::vector<std::uint32_t>> polygons;  // per cell: polygons passing the plane test (sorted)
   std::uint64_t steps = 0;                           // recursion steps in all
-  std::uint32_t fallbacks = 0;  // cells whose flow ran past the budget (all they might see)
-  std::uint64_t occluded = 0;   // polygon and portal tests an occluder settled
+  std::uint32_t fallbacks = 0;       // cells whose flow ran past the budget (cells by flow, items by pairs)
+  std::uint32_t cell_fallbacks = 0;  // ... whose cell-level flow did too (all cells they might see)
+  std::uint64_t occluded = 0;        // polygon and portal tests an occluder settled
 };
 
 struct FlowOptions {

@@ -137,6 +137,47 @@ TEST(Pvs, FlowPastItsBudgetTakesWhatItsPortalsMightSee) {
   }
 }
 
+// Past its budget a flow finds the cells by a flow over cells alone and tests the items of each by portal
+// pairs: still conservative, and a box in a reached room that no line through both doors meets stays out
+// (taking every cell the portals might see, whole, put it in).
+TEST(Pvs, FlowPastItsBudgetTestsItemsByPortalPairs) {
+  MiniBuilding m;
+  m.rect(2, 0.0, 0, 12, 0, 4);
+  m.rect(2, 3.0, 0, 12, 0, 4);
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  m.rect(0, 12.0, 0, 4, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, 12);
+  m.rect(1, 4.0, 0, 3, 0, 12);
+  m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 0.2, 1.0, 0.0, 2.0);  // doors at opposite ends of their walls
+  m.rect_with_hole(0, 8.0, 0, 4, 0, 3, 3.0, 3.8, 0.0, 2.0);
+  const auto first_box = static_cast<std::uint32_t>(m.b.polygons.size());
+  m.room({11.0, 0.1, 0.0}, {11.5, 0.5, 0.5});  // in the far room's corner, behind the second door's wall
+  VisibilityConfig config = test_config(PvsMethod::Combined);
+  config.proof_pairs = 0;  // the flow alone
+  const VisibilityResult full = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+  config.flow_budget = 1;
+  const VisibilityResult cut = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+  ASSERT_EQ(cut.partition.cells.size(), 3u);
+  EXPECT_EQ(full.flow_fallbacks, 0u);
+  EXPECT_GT(cut.flow_fallbacks, 0u);
+  EXPECT_EQ(cut.flow_cell_fallbacks, 0u);
+  const std::uint32_t first = locate(cut.partition.nodes, {1, 1, 1}),
+                      last = locate(cut.partition.nodes, {11, 2, 1});
+  EXPECT_TRUE(has(cut.flow_cells[first], last)) << "the far room is reached through both doors";
+  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(false));
+  for (std::uint32_t c = 0; c < 3; ++c) {
+    const Box& box = cut.partition.cells[c];
+    EXPECT_EQ(judge.missed(judge.views(box, c, portal_viewpoints(cut.graph, box, c)), cut.polygon_pvs(c)),
+              0u);
+    for (const auto p : full.polygon_pvs(c))
+      EXPECT_TRUE(has(cut.polygon_pvs(c), p)) << "cell " << c << " polygon " << p;
+  }
+  for (std::uint32_t p = first_box; p < first_box + 6; ++p) {
+    EXPECT_FALSE(has(full.polygon_pvs(first), p)) << "box polygon " << p;
+    EXPECT_FALSE(has(cut.polygon_pvs(first), p)) << "box polygon " << p;
+  }
+}
+
 TEST(Pvs, SourceNarrowsToWhatSeesThroughEachDoor) {
   // Rooms along x, 10 m wide and 3 m high: A [0, 1], B [1, 2], C [2, 3], D [3, 4], E [4, 10]; doors 2 m
   // high at x = 1 (y 0.5..9.5), x = 2 (y 4..6), x = 3 (y 8..9.5), x = 4 (y 0.5..9.5). In plan a sight line
