@@ -64,8 +64,8 @@ HiddenProver::HiddenProver(const std::vector<VisPolygon>& polygons, const RayCas
   }
 }
 
-HiddenProver::Sight HiddenProver::sight(const model::Vec3& from, const model::Vec3& to,
-                                        std::uint32_t target) const {
+HiddenProver::Sight HiddenProver::sight(const model::Vec3& from, const model::Vec3& to, std::uint32_t target,
+                                        bool reach_on_miss) const {
   Sight s;
   Ray ray;
   ray.origin = from;
@@ -75,7 +75,12 @@ HiddenProver::Sight HiddenProver::sight(const model::Vec3& from, const model::Ve
   ray.tmax = 1.0 + 1e-9;
   for (int layer = 0; layer <= kMaxGlassLayers + 4; ++layer) {
     const RayHit h = caster_.closest(ray);
-    if (!h.hit()) return s;
+    if (!h.hit()) {
+      // Nothing in the way to the end point: it is seen, when it stands for the target (a point of a
+      // window is not).
+      s.reaches = reach_on_miss && s.count == 0 && !s.opaque_unnamed;
+      return s;
+    }
     const bool drawn = !cull_back_faces_ || h.front || glass_[h.polygon];
     if (h.polygon == target && drawn) {
       s.reaches = s.count == 0 && !s.opaque_unnamed;  // unless something drawn stood in front
@@ -120,6 +125,7 @@ bool HiddenProver::piece_meets_polygon(const Winding& piece, std::uint32_t targe
 struct HiddenProver::Search {
   std::uint32_t target;
   const ProofOptions& options;
+  bool box_target = false;  // a detail cluster, proven hidden face by face of its box
   ProofStats stats;
   bool visible = false;  // a sight line reached the target: stop
   bool spent = false;    // the budget ran out: stop
@@ -165,7 +171,10 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
   if (!dest_is_target || !top) ++search.stats.windows;
   const Box sb = bounds_of(source.points);
   const Box db = bounds_of(dest);
-  const Sight s = sight(0.5 * (sb.min + sb.max), centre_of(dest), dest_is_target ? search.target : kNoTarget);
+  // A box face's centre is seen when the line meets the cluster or nothing before it.
+  const bool looks_for_target = dest_is_target || search.box_target;
+  const Sight s = sight(0.5 * (sb.min + sb.max), centre_of(dest),
+                        looks_for_target ? search.target : kNoTarget, search.box_target && top);
   if (s.reaches && top) {
     search.visible = true;
     return false;
@@ -217,28 +226,55 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
          hidden(source, clip_front(dest, cut.flipped()), dest_is_target, top, depth + 1, search);
 }
 
+std::vector<Winding> HiddenProver::target_outlines(std::uint32_t target) const {
+  const VisPolygon& tp = polygons_[target];
+  if (!tp.detail) return {tp.hull};
+  // A sight line to any point of a cluster first crosses its box's surface: when no line reaches a face,
+  // none reaches the cluster.
+  std::vector<Winding> faces;
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (const double c : {tp.box.min[a], tp.box.max[a]}) {
+      Winding f(4);
+      for (int k = 0; k < 4; ++k) {
+        f[k][a] = c;
+        f[k][u] = (k == 1 || k == 2) ? tp.box.max[u] : tp.box.min[u];
+        f[k][v] = k >= 2 ? tp.box.max[v] : tp.box.min[v];
+      }
+      faces.push_back(std::move(f));
+      if (tp.box.max[a] == tp.box.min[a]) break;  // a flat box: one face in that plane
+    }
+  }
+  return faces;
+}
+
 Verdict HiddenProver::prove(const Box& cell, std::span<const Exit> exits, std::uint32_t target,
                             const ProofOptions& options, ProofStats* stats) const {
   const VisPolygon& tp = polygons_[target];
   // Touching the cell: sight lines need not pass a portal.
   if (tp.box.overlaps(cell, kShaftSlack)) return prove_from_box(cell, target, options, stats);
-  Search search{target, options, {}};
-  bool all = tp.hull.size() >= 3 && options.max_pairs > 0;
-  for (const Exit& e : exits) {
-    if (!all) break;
-    // Only what lies beyond the portal is seen through it.
-    const Winding part = clip_front(tp.hull, e.out);
-    if (part.size() >= 3 && e.hull.size() >= 3) all = hidden({e.hull, false}, part, true, true, 0, search);
-  }
+  Search search{target, options, tp.detail, {}};
+  bool all = (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0;
+  for (const Winding& outline : target_outlines(target))
+    for (const Exit& e : exits) {
+      if (!all) break;
+      // Only what lies beyond the portal is seen through it.
+      const Winding part = clip_front(outline, e.out);
+      if (part.size() >= 3 && e.hull.size() >= 3)
+        all = hidden({e.hull, false}, part, !tp.detail, true, 0, search);
+    }
   return search.conclude(all, stats);
 }
 
 Verdict HiddenProver::prove_from_box(const Box& viewer, std::uint32_t target, const ProofOptions& options,
                                      ProofStats* stats) const {
-  Search search{target, options, {}};
   const VisPolygon& tp = polygons_[target];
-  const bool all = tp.hull.size() >= 3 && options.max_pairs > 0 &&
-                   hidden({box_corners(inset(viewer)), true}, tp.hull, true, true, 0, search);
+  Search search{target, options, tp.detail, {}};
+  bool all = (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0;
+  for (const Winding& outline : target_outlines(target)) {
+    if (!all) break;
+    all = hidden({box_corners(inset(viewer)), true}, outline, !tp.detail, true, 0, search);
+  }
   return search.conclude(all, stats);
 }
 

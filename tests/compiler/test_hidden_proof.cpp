@@ -217,5 +217,53 @@ TEST(HiddenProver, ATargetFacingAwayOrSeenIsSettledAtOnce) {
   EXPECT_EQ(prover.prove_from_box(far_side, c.target, ProofOptions{}), Verdict::Hidden);
 }
 
+// The corner's walls with a detail cluster (a small closed box, one item) at `lo`..`hi` in place of the
+// target polygon: proven hidden face by face of its box.
+Corner corner_with_cluster(double gap, Vec3 lo, Vec3 hi) {
+  MiniBuilding m;
+  m.rect(0, 0.0, gap, 3.0, 0.0, 3.0, model::Role::Opaque, 1);
+  m.rect(1, 0.0, 0.0, 3.0, -3.0, 0.0, model::Role::Opaque, -1);
+  Corner c;
+  c.polygons = vis_polygons(m.b.vertices, m.b.indices, m.b.polygons);
+  MiniBuilding box;
+  box.room(lo, hi);
+  VisPolygon cluster;
+  cluster.detail = true;
+  cluster.box = {lo, hi};
+  for (const auto& p : vis_polygons(box.b.vertices, box.b.indices, box.b.polygons))
+    cluster.triangles.insert(cluster.triangles.end(), p.triangles.begin(), p.triangles.end());
+  c.target = static_cast<std::uint32_t>(c.polygons.size());
+  c.polygons.push_back(std::move(cluster));
+  std::vector<Triangle> triangles;
+  for (std::uint32_t p = 0; p < c.polygons.size(); ++p)
+    for (const auto& t : c.polygons[p].triangles) triangles.push_back({t[0], t[1], t[2], p});
+  c.caster = make_ray_caster("brute", triangles);
+  return c;
+}
+
+TEST(HiddenProver, ADetailClusterIsProvenHiddenByItsBoxFaces) {
+  ProofOptions o;
+  o.max_pairs = 4096;
+  const Vec3 lo{-1.5, 0.5, 0.5}, hi{-1.0, 1.5, 1.5};  // behind the corner
+  {
+    const Corner c = corner_with_cluster(0.0, lo, hi);
+    const HiddenProver prover(c.polygons, *c.caster, true);
+    EXPECT_EQ(prover.prove_from_box(c.viewer, c.target, o), Verdict::Hidden);
+    // Seen from beside it, not round the corner.
+    const Box beside{{-1.0, 2.0, 0.5}, {0.0, 3.0, 1.5}};
+    EXPECT_EQ(prover.prove_from_box(beside, c.target, o), Verdict::Visible);
+  }
+  // A 2 cm gap where the walls meet: some sight line passes, so never hidden.
+  const Corner gap = corner_with_cluster(0.02, lo, hi);
+  const HiddenProver prover(gap.polygons, *gap.caster, true);
+  EXPECT_NE(prover.prove_from_box(gap.viewer, gap.target, o), Verdict::Hidden);
+  // In the viewer's own quadrant, in plain sight: seen at once.
+  const Corner open = corner_with_cluster(0.0, {2.0, -1.5, 0.5}, {2.5, -0.5, 1.5});
+  const HiddenProver open_prover(open.polygons, *open.caster, true);
+  ProofStats stats;
+  EXPECT_EQ(open_prover.prove_from_box(open.viewer, open.target, o, &stats), Verdict::Visible);
+  EXPECT_LE(stats.pairs, 2u);
+}
+
 }  // namespace
 }  // namespace walk::compiler
