@@ -81,46 +81,4 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
   return f;
 }
 
-MergedCells merge_outside(const Partition& part, const PortalGraph& g, const std::vector<char>& inside) {
-  MergedCells m;
-  const std::size_t n = part.cells.size();
-  m.node_of.assign(n, kOutside);
-  for (std::uint32_t c = 0; c < n; ++c)
-    if (inside[c]) {
-      m.node_of[c] = static_cast<std::uint32_t>(m.cells_of.size());
-      m.cells_of.push_back({c});
-      m.partition.cells.push_back(part.cells[c]);
-      m.partition.cell_polygons.push_back(part.cell_polygons[c]);
-    }
-  if (m.cells_of.size() < n) {
-    m.outside = static_cast<std::uint32_t>(m.cells_of.size());
-    m.cells_of.emplace_back();
-    m.partition.cells.push_back(part.bounds);
-    std::vector<std::uint32_t> items;
-    for (std::uint32_t c = 0; c < n; ++c)
-      if (!inside[c]) {
-        m.node_of[c] = m.outside;
-        m.cells_of.back().push_back(c);
-        items.insert(items.end(), part.cell_polygons[c].begin(), part.cell_polygons[c].end());
-      }
-    std::sort(items.begin(), items.end());
-    items.erase(std::unique(items.begin(), items.end()), items.end());
-    m.partition.cell_polygons.push_back(std::move(items));
-  }
-  m.partition.bounds = part.bounds;
-  m.partition.planes = part.planes;
-  m.graph.cell_portals.resize(m.cells_of.size());
-  for (const Portal& p : g.portals) {
-    Portal q = p;
-    q.back = m.node_of[p.back];
-    q.front = m.node_of[p.front];
-    if (q.back == q.front) continue;  // between two outside cells
-    const auto id = static_cast<std::uint32_t>(m.graph.portals.size());
-    m.graph.cell_portals[q.back].push_back(id);
-    m.graph.cell_portals[q.front].push_back(id);
-    m.graph.portals.push_back(std::move(q));
-  }
-  return m;
-}
-
 }  // namespace walk::compiler

@@ -31,19 +31,4 @@ struct InsideFlood {
 [[nodiscard]] InsideFlood flood_inside(const Partition& partition, const PortalGraph& graph,
                                        std::span<const model::Vec3> seeds);
 
-// The cells and portals the portal flow runs over when some cells are outside: the outside ones become one
-// node (last), so that a sight line out through one opening meets the others directly rather than through
-// a maze of empty outside cells. Conservative: the merged node is not convex, but the flow's plane tests do
-// not need convex cells, and anything in it may be seen once it is entered.
-struct MergedCells {
-  Partition partition;  // cells, cell_polygons (and planes) for the flow; nodes empty
-  PortalGraph graph;
-  std::vector<std::uint32_t> node_of;                // per original cell: its node
-  std::vector<std::vector<std::uint32_t>> cells_of;  // per node: the original cells
-  std::uint32_t outside = kOutside;                  // the outside node, or kOutside when none
-};
-
-[[nodiscard]] MergedCells merge_outside(const Partition& partition, const PortalGraph& graph,
-                                        const std::vector<char>& inside);
-
 }  // namespace walk::compiler

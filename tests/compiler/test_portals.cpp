@@ -9,9 +9,12 @@ namespace {
 
 using testing::MiniBuilding;
 
+// Cells no thinner than 0.5 m: a wall's slab is no cell of its own, and each door is one portal.
 PortalGraph graph_of(const MiniBuilding& m, Partition* out = nullptr) {
   const auto p = vis_polygons(m.b.vertices, m.b.indices, m.b.polygons);
-  Partition part = build_partition(p, VisibilityConfig{});
+  VisibilityConfig config;
+  config.min_cell_size = 0.5;
+  Partition part = build_partition(p, config);
   PortalGraph g = find_portals(part, p);
   if (out) *out = std::move(part);
   return g;

@@ -16,6 +16,7 @@ namespace walk::compiler {
 namespace {
 
 using testing::MiniBuilding;
+using testing::small_judge;
 using testing::test_config;
 
 bool has(const std::vector<std::uint32_t>& v, std::uint32_t x) {
@@ -188,7 +189,8 @@ MiniBuilding closed_house(bool hole, bool glazed) {
 TEST(InsideFlood, AClosedBuildingReportsNoLeakAndOneHoleReportsItsPath) {
   VisibilityConfig config = test_config(PvsMethod::Conservative, true);
   config.seeds = {{1.0, 2.0, 1.5}};
-  for (const auto [hole, glazed] : {std::pair{false, false}, std::pair{true, true}, std::pair{true, false}}) {
+  for (const auto& [hole, glazed] :
+       {std::pair{false, false}, std::pair{true, true}, std::pair{true, false}}) {
     const MiniBuilding m = closed_house(hole, glazed);
     const VisibilityResult vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
     ASSERT_TRUE(vis.seeded);
@@ -240,24 +242,47 @@ TEST(InsideFlood, ARoomReachedOnlyThroughGlassIsOffTheWalkYetSeen) {
   EXPECT_TRUE(vis.leaks.empty());
 }
 
-TEST(InsideFlood, MergingTheOutsideKeepsEveryCellAndPortalBetweenInsideAndOutside) {
-  const MiniBuilding m = closed_house(true, false);
-  const VisibilityResult vis =
-      compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, test_config(PvsMethod::Conservative, true));
-  std::vector<char> inside(vis.partition.cells.size(), 1);
-  inside.back() = 0;
-  const MergedCells merged = merge_outside(vis.partition, vis.graph, inside);
-  ASSERT_NE(merged.outside, kOutside);
-  EXPECT_EQ(merged.cells_of.size(), vis.partition.cells.size());
-  EXPECT_EQ(merged.cells_of[merged.outside],
-            std::vector<std::uint32_t>{static_cast<std::uint32_t>(inside.size() - 1)});
-  std::size_t kept = 0;
-  for (const auto& p : vis.graph.portals) kept += inside[p.back] || inside[p.front];
-  EXPECT_EQ(merged.graph.portals.size(), kept);
-  // All inside: nothing merged.
-  const MergedCells none = merge_outside(vis.partition, vis.graph, std::vector<char>(inside.size(), 1));
-  EXPECT_EQ(none.outside, kOutside);
-  EXPECT_EQ(none.graph.portals.size(), vis.graph.portals.size());
+// Two closed rooms whose windows face the same outside, with a solid block (two boxes: no single wall of it
+// hides one window from the other) between them: no straight line from one window to the other misses
+// the block, so neither room sees into the other, and the outside cells the flow passes are off the walk.
+TEST(InsideFlood, ASightLineOutOfAWindowDoesNotPassThroughABlockToAnother) {
+  MiniBuilding m;
+  // Room A, [0,4] x [0,4], window in its east wall.
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.5, 2.5, 1.0, 2.0);
+  m.rect(0, 4.0, 1.5, 2.5, 1.0, 2.0, model::Role::Glass);
+  m.rect(1, 0.0, 0, 3, 0, 4);
+  const auto a_north = m.rect(1, 4.0, 0, 3, 0, 4);
+  m.rect(2, 0.0, 0, 4, 0, 4);
+  m.rect(2, 3.0, 0, 4, 0, 4);
+  // The block, [4.5,10] x [0.5,5.5], as two boxes: no single wall of it hides one window from the other.
+  m.room({4.5, 0.5, 0.0}, {10.0, 2.8, 3.0});
+  m.room({4.5, 2.8, 0.0}, {10.0, 5.5, 3.0});
+  // Room B, [6,10] x [6,10], window in its south wall.
+  m.rect(0, 6.0, 6, 10, 0, 3);
+  m.rect(0, 10.0, 6, 10, 0, 3);
+  m.rect_with_hole(1, 6.0, 0, 3, 6, 10, 1.0, 2.0, 7.0, 9.0);
+  m.rect(1, 6.0, 1.0, 2.0, 7.0, 9.0, model::Role::Glass);
+  const auto b_north = m.rect(1, 10.0, 0, 3, 6, 10);
+  m.rect(2, 0.0, 6, 10, 6, 10);
+  m.rect(2, 3.0, 6, 10, 6, 10);
+  VisibilityConfig config = test_config(PvsMethod::Combined);
+  config.seeds = {{2.0, 2.0, 1.5}, {8.0, 8.0, 1.5}};
+  config.proof_pairs = 0;  // the flow alone
+  const VisibilityResult vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+  const std::uint32_t a = locate(vis.partition.nodes, {2, 2, 1.5}),
+                      b = locate(vis.partition.nodes, {8, 8, 1.5});
+  ASSERT_NE(a, b);
+  EXPECT_TRUE(vis.inside[a] && vis.inside[b]);
+  EXPECT_TRUE(vis.leaks.empty());
+  EXPECT_FALSE(has(vis.polygon_pvs(a), b_north)) << "room B's far wall from room A";
+  EXPECT_FALSE(has(vis.polygon_pvs(b), a_north)) << "room A's north wall from room B";
+  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(false));
+  for (const auto c : {a, b}) {
+    const Box& box = vis.partition.cells[c];
+    EXPECT_EQ(judge.missed(judge.views(box, c, portal_viewpoints(vis.graph, box, c)), vis.polygon_pvs(c)), 0u)
+        << "cell " << c;
+  }
 }
 
 }  // namespace
