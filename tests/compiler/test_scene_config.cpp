@@ -182,7 +182,9 @@ TEST_F(SceneConfigTest, RayCastersAreCheckedAndPlainEmbreeIsWarnedOf) {
       EXPECT_EQ(std::string(table) == "lighting" ? c.lighting.ray_caster : c.visibility.ray_caster, caster);
       const bool warned = log.str().find("self-hit policy") != std::string::npos;
       EXPECT_EQ(warned, std::string(caster) == "embree") << table << " " << caster << ": " << log.str();
-      if (warned) EXPECT_NE(log.str().find(path_), std::string::npos) << log.str();
+      if (warned) {
+        EXPECT_NE(log.str().find(path_), std::string::npos) << log.str();
+      }
     }
   }
   spdlog::set_default_logger(previous);
