@@ -5,6 +5,7 @@
 #include "model/bundle.hpp"
 #include "model/model.hpp"
 #include "tools/commands.hpp"
+#include "tools/pvs_stats.hpp"
 
 namespace walk::tools {
 namespace {
@@ -31,6 +32,13 @@ int inspect(const std::string& path, bool list) {
   std::printf("clusters          %zu%s\n",
               b->clusters().empty() ? b->polygons().size() : b->clusters().size(),
               b->clusters().empty() ? " (one per polygon)" : "");
+  if (!b->cells().empty()) {
+    const PvsTriangles t = pvs_triangles(*b);
+    std::printf(
+        "PVS draws         %.0f triangles on average over %zu walk cells (worst %llu) of %llu: 1/%.1f\n",
+        t.average, t.walk_cells, static_cast<unsigned long long>(t.worst),
+        static_cast<unsigned long long>(t.total), t.average > 0.0 ? double(t.total) / t.average : 0.0);
+  }
   std::printf("ambient %.4f W/m2 per albedo, exposure %.4f W/m2 = white\n", m.ambient, m.exposure);
   std::printf("stages:\n");
   for (const auto& s : b->stages())
