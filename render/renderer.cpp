@@ -589,11 +589,26 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   const ShadedVertex arrow[3] = {{glm::vec3(eye + f * size, z), red},
                                  {glm::vec3(eye - f * size * 0.6f + side_dir * size * 0.6f, z), red},
                                  {glm::vec3(eye - f * size * 0.6f - side_dir * size * 0.6f, z), red}};
+  // The compile's largest leak (LEAK): a yellow line from a seed through portal centres to the opening,
+  // under the arrow, so an integrator sees where the building is open (qbsp's .pts line).
+  std::vector<ShadedVertex> marks(arrow, arrow + 3);
+  const auto leak = bundle.leak_path();
+  const glm::vec3 yellow = glm::vec3(red.x, red.x, 0.0f);
+  const float line_half_width = 0.012f * half;
+  for (std::size_t i = 0; i + 1 < leak.size(); ++i) {
+    const glm::vec2 a(leak[i][0], leak[i][1]), b(leak[i + 1][0], leak[i + 1][1]);
+    const glm::vec2 d = glm::length(b - a) > 1e-6f ? glm::normalize(b - a) : glm::vec2(1, 0);
+    const glm::vec2 n = glm::vec2(-d.y, d.x) * line_half_width;
+    const float lz = z - 0.5f;
+    const glm::vec3 q[4] = {{a + n, lz}, {a - n, lz}, {b - n, lz}, {b + n, lz}};
+    for (const int k : {0, 1, 2, 0, 2, 3}) marks.push_back({q[k], yellow});
+  }
   glBindBuffer(GL_ARRAY_BUFFER, marker_vbo);
-  glBufferData(GL_ARRAY_BUFFER, sizeof(arrow), arrow, GL_DYNAMIC_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(marks.size() * sizeof(ShadedVertex)), marks.data(),
+               GL_DYNAMIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glDisable(GL_CULL_FACE);  // whichever way the arrow winds from above
-  draw_shaded(marker_vao, 3, plan);
+  draw_shaded(marker_vao, GLsizei(marks.size()), plan);
   glDisable(GL_SCISSOR_TEST);
   glViewport(0, 0, width, height);
 }

@@ -83,7 +83,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--backend", args->backend, "auto, osmesa, egl or glfw");
   cmd->add_option("--dimmers", args->dimmers, "Dimmer level per circuit, 0..1")->delimiter(',');
   cmd->add_option("--fov", args->fov, "Vertical field of view, degrees");
-  cmd->add_flag("--map", args->map, "Overlay the floor plan (top right) with the viewer's position");
+  cmd->add_flag("--map", args->map,
+                "Overlay the floor plan (top right) with the viewer's position and the compile's largest "
+                "leak path (yellow)");
   cmd->add_option(
          "--refine", args->refine,
          "Refine as a still kiosk does (patches, diagonals, subdivision) with N anti-aliasing samples")

@@ -1,10 +1,12 @@
 // The map view (the paper's floor plan): a top-down view cut above the viewer's storey, in the top-right
 // corner, with the viewer as a red arrow. Checked where the plan's geometry puts the floors and the viewer.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include "render_test_support.hpp"
 #include "two_rooms.hpp"
@@ -69,6 +71,58 @@ TEST_P(MapOverlayTest, FloorsAndTheViewerAppearWhereThePlanPutsThem) {
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < left; ++x)
       ASSERT_EQ(0, std::memcmp(map.pixel(x, y), plain.pixel(x, y), 4)) << x << "," << y;
+}
+
+// The compile's largest leak path (LEAK) is drawn on the map in yellow, from the seed to the opening; a
+// bundle without one shows no yellow.
+TEST_P(MapOverlayTest, TheLeakPathIsDrawnFromTheSeedToTheOpening) {
+  auto backend = headless(GetParam());
+  TwoRooms scene;
+  model::BundleContents contents = make_two_rooms(scene);
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("walk_render_tests_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const int side = 108, left = kWidth - side - 8, top = 8;
+  auto to_pixel = [&](double x, double y) {
+    const double half = 4.0 * 1.05;
+    return std::pair{int(left + (1.0 + (x - 4.0) / half) * 0.5 * side),
+                     int(top + (1.0 - (y - 2.0) / half) * 0.5 * side)};
+  };
+  auto yellow_at = [](const Image& image, int px, int py) {
+    int n = 0;
+    for (int y = py - 2; y <= py + 2; ++y)
+      for (int x = px - 2; x <= px + 2; ++x) {
+        const std::uint8_t* p = image.pixel(x, y);
+        n += p[0] > 200 && p[1] > 200 && p[2] < 40 ? 1 : 0;
+      }
+    return n;
+  };
+  for (const bool leaking : {false, true}) {
+    contents.leak_path.clear();
+    if (leaking) contents.leak_path = {{1.0f, 3.0f, 1.5f}, {4.0f, 3.0f, 1.0f}, {7.5f, 0.5f, 0.0f}};
+    const std::string path = (dir / (leaking ? "leak.walk" : "sealed.walk")).string();
+    model::write_bundle(path, contents);
+    const auto bundle = model::Bundle::open(path);
+    Renderer renderer(*bundle);
+    renderer.set_map_overlay(true, 0.9f);
+    renderer.draw(looking_along_x(-1.0), kWidth, kHeight);
+    const Image map = renderer.read_pixels(kWidth, kHeight);
+    int yellow = 0;
+    for (int y = top; y < top + side; ++y)
+      for (int x = left; x < left + side; ++x) yellow += yellow_at(map, x, y) > 0 ? 1 : 0;
+    if (!leaking) {
+      EXPECT_EQ(yellow, 0);
+      continue;
+    }
+    EXPECT_GT(yellow, 20);
+    // On the path: the seed, a bend and the opening, and half way along each segment; not off it.
+    for (const auto& [x, y] : {std::pair{1.0, 3.0}, {2.5, 3.0}, {4.0, 3.0}, {5.75, 1.75}, {7.4, 0.6}}) {
+      const auto [px, py] = to_pixel(x, y);
+      EXPECT_GT(yellow_at(map, px, py), 0) << "at " << x << "," << y;
+    }
+    const auto [fx, fy] = to_pixel(6.5, 3.5);
+    EXPECT_EQ(yellow_at(map, fx, fy), 0) << "off the path";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Headless, MapOverlayTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
