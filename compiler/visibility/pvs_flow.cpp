@@ -208,18 +208,8 @@ class Flow {
       if (on_stack_[d.to]) continue;
       for (std::size_t w = 0; w < might.size(); ++w) next_might[w] = might[w] & d.might[w];
       if (subset(next_might, reached_)) continue;
-      const Winding next_source = clip_front(source, d.plane.flipped());
-      if (next_source.empty()) continue;
-      const Winding target = clip_front_all(clip_front(*d.winding, source_plane_), seps);
-      if (winding_width(target) < kSliverWidth || occluded(target, cell, light)) continue;
-      Winding narrowed = next_source;
-      if (pass) {
-        std::vector<Plane> back;
-        separating_planes(target, *pass, false, back);
-        separating_planes(*pass, target, true, back);
-        narrowed = clip_front_all(std::move(narrowed), back);
-      }
-      if (winding_width(narrowed) < kSliverWidth) continue;
+      Winding target, narrowed;
+      if (!step_through(d, cell, source, pass, seps, light, target, narrowed)) continue;
       recurse_cells(d.to, narrowed, &target, next_might, budget);
       if (steps_ > budget) break;
     }
@@ -302,6 +292,30 @@ class Flow {
     return false;
   }
 
+  // One step of a sequence out of `cell` through `d`, seen from `source` through `pass` (null: the first
+  // portal), whose separating planes are `seps`: `target` is d clipped to what the source sees through the
+  // pass, `narrowed` the part of the source that sees the target. False where nothing passes: the source
+  // is not behind d, either is a sliver, or an occluder of the cell hides the target from `light`.
+  bool step_through(const Directed& d, std::uint32_t cell, const Winding& source, const Winding* pass,
+                    const std::vector<Plane>& seps, const Winding& light, Winding& target,
+                    Winding& narrowed) {
+    // The source must lie behind the next portal to see through it.
+    narrowed = clip_front(source, d.plane.flipped());
+    if (narrowed.empty()) return false;
+    target = clip_front_all(clip_front(*d.winding, source_plane_), seps);
+    if (winding_width(target) < kSliverWidth || occluded(target, cell, light)) return false;
+    // Only part of the source sees the target through the pass: clip it by the planes separating the
+    // target and the pass, both ways (as Quake's vis clips its source), so that every portal beyond is
+    // clipped by the planes of a narrower source.
+    if (pass) {
+      std::vector<Plane> back;
+      separating_planes(target, *pass, false, back);
+      separating_planes(*pass, target, true, back);
+      narrowed = clip_front_all(std::move(narrowed), back);
+    }
+    return winding_width(narrowed) >= kSliverWidth;
+  }
+
   // Entering `cell`, seen from `source` (part of the first portal) through `pass` (the last portal passed,
   // clipped), or directly through the first portal when pass is null.
   // `might`: the cells every portal passed so far might see.
@@ -332,22 +346,8 @@ class Flow {
       if (on_stack_[d.to]) continue;
       for (std::size_t w = 0; w < might.size(); ++w) next_might[w] = might[w] & d.might[w];
       if (all_done(next_might)) continue;
-      // The source must lie behind the next portal to see through it.
-      const Winding next_source = clip_front(source, d.plane.flipped());
-      if (next_source.empty()) continue;
-      const Winding target = clip_front_all(clip_front(*d.winding, source_plane_), seps);
-      if (winding_width(target) < kSliverWidth || occluded(target, cell, light)) continue;
-      // Only part of the source sees the target through the pass: clip it by the planes separating the
-      // target and the pass, both ways (as Quake's vis clips its source), so that every portal beyond is
-      // clipped by the planes of a narrower source.
-      Winding narrowed = next_source;
-      if (pass) {
-        std::vector<Plane> back;
-        separating_planes(target, *pass, false, back);
-        separating_planes(*pass, target, true, back);
-        narrowed = clip_front_all(std::move(narrowed), back);
-      }
-      if (winding_width(narrowed) < kSliverWidth) continue;
+      Winding target, narrowed;
+      if (!step_through(d, cell, source, pass, seps, light, target, narrowed)) continue;
       recurse(d.to, narrowed, &target, &d.plane, next_might);
       if (steps_ > budget_) break;
     }
