@@ -24,6 +24,7 @@
 
 #include "model/bundle.hpp"
 #include "tools/commands.hpp"
+#include "tools/gnuplot.hpp"
 #include "tools/pvs_stats.hpp"
 
 extern char** environ;
@@ -129,21 +130,15 @@ int run_bench(const std::vector<std::string>& sizes, const std::string& work, un
     std::cout << line << std::flush;
   }
   if (!plot.empty()) {
-    const std::string data_path = plot + ".csv";
-    std::ofstream(data_path) << csv.str();
-    std::ostringstream script;
-    script << "set terminal pngcairo size 1000,600\nset output '" << plot << "'\nset datafile separator ','\n"
-           << "set logscale xy\nset key top left\nset xlabel 'triangles drawn by the bundle'\n"
-           << "set ylabel 'cells stage seconds'\nset y2label 'whole compile peak RSS (MiB)'\nset y2tics\n"
-           << "set logscale y2\nset title 'Cells stage cost against model size (walk bench cells)'\n"
-           << "plot '" << data_path << "' every ::1 using 2:7 with linespoints title 'cells stage s', "
-           << "'' every ::1 using 2:7:1 with labels offset 1,1 notitle, "
-           << "'' every ::1 using 2:8 axes x1y2 with linespoints title 'peak RSS MiB'\n";
-    const std::string script_path = plot + ".gp";
-    std::ofstream(script_path) << script.str();
-    const std::string command = "gnuplot '" + script_path + "'";
-    if (std::system(command.c_str()) != 0)
-      std::fprintf(stderr, "gnuplot failed; the CSV is in %s\n", data_path.c_str());
+    std::ostringstream commands;
+    commands << "set logscale xy\nset key top left\nset xlabel 'triangles drawn by the bundle'\n"
+             << "set ylabel 'cells stage seconds'\nset y2label 'whole compile peak RSS (MiB)'\nset y2tics\n"
+             << "set logscale y2\nset title 'Cells stage cost against model size (walk bench cells)'\n"
+             << "plot '" << plot_data_path(plot)
+             << "' every ::1 using 2:7 with linespoints title 'cells stage s', "
+             << "'' every ::1 using 2:7:1 with labels offset 1,1 notitle, "
+             << "'' every ::1 using 2:8 axes x1y2 with linespoints title 'peak RSS MiB'\n";
+    plot_with_gnuplot(plot, csv.str(), commands.str());
   }
   return 0;
 }

@@ -16,6 +16,7 @@
 #include "compiler/radiosity/vertex_light.hpp"
 #include "model/error.hpp"
 #include "tools/commands.hpp"
+#include "tools/gnuplot.hpp"
 
 namespace walk::tools {
 namespace {
@@ -149,27 +150,21 @@ int run_bench(const std::string& which, bool quick, unsigned threads, const std:
         static_cast<unsigned long long>(church.rays), church.rays / church.seconds * 1e-6, peak_rss_mib());
   }
   if (!plot.empty()) {
-    const std::string data_path = plot + ".csv";
-    std::ofstream(data_path) << csv.str();
     // Each grid of each scene is one line of error against solve time (log-log).
-    std::ostringstream script;
-    script << "set terminal pngcairo size 1000,600\nset output '" << plot << "'\nset datafile separator ','\n"
-           << "set logscale xy\nset key outside\nset xlabel 'solve seconds'\n"
-           << "set ylabel 'display RMS error (fraction of mean)'\n"
-           << "set title 'Radiosity accuracy against time (walk bench radiosity)'\nplot ";
+    std::ostringstream commands;
+    commands << "set logscale xy\nset key outside\nset xlabel 'solve seconds'\n"
+             << "set ylabel 'display RMS error (fraction of mean)'\n"
+             << "set title 'Radiosity accuracy against time (walk bench radiosity)'\nplot ";
     bool first = true;
     for (const auto& sweep : sweeps)
       for (double grid : sweep.grids) {
-        script << (first ? "" : ", ") << "'" << data_path << "' using ((strcol(1) eq '" << sweep.scene
-               << "' && abs($2 - " << grid << ") < 1e-9) ? $6 : 1/0):7 with linespoints title '"
-               << sweep.scene << " " << grid << " m'";
+        commands << (first ? "" : ", ") << "'" << plot_data_path(plot) << "' using ((strcol(1) eq '"
+                 << sweep.scene << "' && abs($2 - " << grid
+                 << ") < 1e-9) ? $6 : 1/0):7 with linespoints title '" << sweep.scene << " " << grid << " m'";
         first = false;
       }
-    const std::string script_path = plot + ".gp";
-    std::ofstream(script_path) << script.str() << "\n";
-    const std::string command = "gnuplot '" + script_path + "'";
-    if (std::system(command.c_str()) != 0)
-      std::fprintf(stderr, "gnuplot failed; the CSV is in %s\n", data_path.c_str());
+    commands << "\n";
+    plot_with_gnuplot(plot, csv.str(), commands.str());
   }
   return 0;
 }
