@@ -16,7 +16,6 @@ namespace walk::compiler {
 namespace {
 
 using testing::MiniBuilding;
-using testing::small_judge;
 using testing::test_config;
 
 bool has(const std::vector<std::uint32_t>& v, std::uint32_t x) {
@@ -277,12 +276,7 @@ TEST(InsideFlood, ASightLineOutOfAWindowDoesNotPassThroughABlockToAnother) {
   EXPECT_TRUE(vis.leaks.empty());
   EXPECT_FALSE(has(vis.polygon_pvs(a), b_north)) << "room B's far wall from room A";
   EXPECT_FALSE(has(vis.polygon_pvs(b), a_north)) << "room A's north wall from room B";
-  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(false));
-  for (const auto c : {a, b}) {
-    const Box& box = vis.partition.cells[c];
-    EXPECT_EQ(judge.missed(judge.views(box, c, portal_viewpoints(vis.graph, box, c)), vis.polygon_pvs(c)), 0u)
-        << "cell " << c;
-  }
+  EXPECT_EQ(testing::missed_pixels(m, vis, {a, b}), 0u);
 }
 
 }  // namespace

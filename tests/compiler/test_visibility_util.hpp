@@ -111,4 +111,16 @@ inline VerifyOptions small_judge(bool cull_back_faces = false) {
   return o;
 }
 
+// Pixels the PVS of each of `cells` misses, judged from inside each cell and from beside its portals.
+inline std::uint64_t missed_pixels(const MiniBuilding& m, const VisibilityResult& vis,
+                                   const std::vector<std::uint32_t>& cells, bool cull_back_faces = false) {
+  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(cull_back_faces));
+  std::uint64_t missed = 0;
+  for (const auto c : cells) {
+    const Box& box = vis.partition.cells[c];
+    missed += judge.missed(judge.views(box, c, portal_viewpoints(vis.graph, box, c)), vis.polygon_pvs(c));
+  }
+  return missed;
+}
+
 }  // namespace walk::compiler::testing
