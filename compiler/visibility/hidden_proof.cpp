@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "compiler/visibility/trace_through_glass.hpp"
+#include "compiler/visibility/vis_items.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -142,13 +143,6 @@ struct HiddenProver::Search {
 
 namespace {
 
-Winding box_corners(const Box& b) {
-  Winding w(8);
-  for (int c = 0; c < 8; ++c)
-    for (int a = 0; a < 3; ++a) w[c][a] = (c >> a) & 1 ? b.max[a] : b.min[a];
-  return w;
-}
-
 model::Vec3 centre_of(const Winding& w) {
   model::Vec3 c{0.0};
   for (const auto& v : w) c += v;
@@ -228,24 +222,9 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
 
 std::vector<Winding> HiddenProver::target_outlines(std::uint32_t target) const {
   const VisPolygon& tp = polygons_[target];
-  if (!tp.detail) return {tp.hull};
   // A sight line to any point of a cluster first crosses its box's surface: when no line reaches a face,
   // none reaches the cluster.
-  std::vector<Winding> faces;
-  for (int a = 0; a < 3; ++a) {
-    const int u = (a + 1) % 3, v = (a + 2) % 3;
-    for (const double c : {tp.box.min[a], tp.box.max[a]}) {
-      Winding f(4);
-      for (int k = 0; k < 4; ++k) {
-        f[k][a] = c;
-        f[k][u] = (k == 1 || k == 2) ? tp.box.max[u] : tp.box.min[u];
-        f[k][v] = k >= 2 ? tp.box.max[v] : tp.box.min[v];
-      }
-      faces.push_back(std::move(f));
-      if (tp.box.max[a] == tp.box.min[a]) break;  // a flat box: one face in that plane
-    }
-  }
-  return faces;
+  return tp.detail ? box_faces(tp.box) : std::vector<Winding>{tp.hull};
 }
 
 Verdict HiddenProver::prove(const Box& cell, std::span<const Exit> exits, std::uint32_t target,

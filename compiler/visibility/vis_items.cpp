@@ -123,6 +123,24 @@ std::vector<model::Vec3> box_corners(const Box& box) {
   return out;
 }
 
+std::vector<Winding> box_faces(const Box& box) {
+  std::vector<Winding> faces;
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (const double c : {box.min[a], box.max[a]}) {
+      Winding f(4);
+      for (int k = 0; k < 4; ++k) {
+        f[k][a] = c;
+        f[k][u] = (k == 1 || k == 2) ? box.max[u] : box.min[u];
+        f[k][v] = k >= 2 ? box.max[v] : box.min[v];
+      }
+      faces.push_back(std::move(f));
+      if (box.max[a] == box.min[a]) break;  // a flat box: one face in that plane
+    }
+  }
+  return faces;
+}
+
 bool box_meets_region(const Box& box, const std::vector<Plane>& planes) {
   // Whole box behind one plane: the common case, without building faces.
   for (const auto& p : planes) {
@@ -130,17 +148,7 @@ bool box_meets_region(const Box& box, const std::vector<Plane>& planes) {
     for (int a = 0; a < 3; ++a) far[a] = p.n[a] >= 0.0 ? box.max[a] : box.min[a];
     if (p.distance(far) < -kPlaneEpsilon) return false;
   }
-  const model::Vec3& a = box.min;
-  const model::Vec3& b = box.max;
-  const Winding faces[6] = {
-      {{a.x, a.y, a.z}, {a.x, b.y, a.z}, {a.x, b.y, b.z}, {a.x, a.y, b.z}},
-      {{b.x, a.y, a.z}, {b.x, b.y, a.z}, {b.x, b.y, b.z}, {b.x, a.y, b.z}},
-      {{a.x, a.y, a.z}, {b.x, a.y, a.z}, {b.x, a.y, b.z}, {a.x, a.y, b.z}},
-      {{a.x, b.y, a.z}, {b.x, b.y, a.z}, {b.x, b.y, b.z}, {a.x, b.y, b.z}},
-      {{a.x, a.y, a.z}, {b.x, a.y, a.z}, {b.x, b.y, a.z}, {a.x, b.y, a.z}},
-      {{a.x, a.y, b.z}, {b.x, a.y, b.z}, {b.x, b.y, b.z}, {a.x, b.y, b.z}},
-  };
-  for (const auto& f : faces)
+  for (const auto& f : box_faces(box))
     if (!clip_front_all(f, planes).empty()) return true;
   return false;
 }

@@ -52,6 +52,9 @@ struct VisItems {
 // The eight corners of `box` (a point set, not a winding).
 [[nodiscard]] std::vector<model::Vec3> box_corners(const Box& box);
 
+// The faces of `box` (x min, x max, y, z), each a winding; a flat box has one face in its flat plane.
+[[nodiscard]] std::vector<Winding> box_faces(const Box& box);
+
 // Does any part of `box` lie on the front side of every plane (the sight lines they bound)? Tested face by
 // face: a convex region that meets a bounded box and is not inside it crosses one of its faces.
 [[nodiscard]] bool box_meets_region(const Box& box, const std::vector<Plane>& planes);
