@@ -192,7 +192,8 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     r.seconds_proofs = since(tp);
   }
   r.seconds_pvs = since(t);
-  for (std::size_t c = 0; c < n; ++c) {
+  // Per cell, for -v: counting detail items walks every PVS, so only when the line is logged.
+  for (std::size_t c = 0; c < n && spdlog::should_log(spdlog::level::debug); ++c) {
     if (!r.inside[c]) continue;
     const Box& b = r.partition.cells[c];
     const auto detail = std::count_if(r.pvs[c].begin(), r.pvs[c].end(),
