@@ -3,6 +3,7 @@ find_package(PkgConfig REQUIRED)
 find_package(Threads REQUIRED)
 # oneTBB: the compiler stages' parallel loops (work stealing, exceptions carried to the caller).
 find_package(TBB REQUIRED)
+find_package(meshoptimizer REQUIRED)  # cluster levels of detail (compiler/lod); Debian ships its CMake config
 find_package(glm REQUIRED)
 find_package(ZLIB REQUIRED)
 find_package(PNG REQUIRED)

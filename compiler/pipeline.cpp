@@ -20,6 +20,7 @@
 #include "compiler/geometry/t_junctions.hpp"
 #include "compiler/import/import_model.hpp"
 #include "compiler/lighting/direct_light.hpp"
+#include "compiler/lod/simplify_clusters.hpp"
 #include "compiler/radiosity/compact_light.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
@@ -504,6 +505,19 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
                           kSeedBelowLuminaire * model::Vec3(l.normal[0], l.normal[1], l.normal[2]));
     const auto counts = compute_cells(out, vis);
     t.done(counts.polygons_in, counts.cells_out, counts.detail);
+  }
+  {
+    StageTimer t(stages, "lod");
+    const LodCounts lod = simplify_clusters(out, options.threads);
+    if (lod.simplified == 0) {
+      t.skipped("no cluster of " + std::to_string(kLodMinTriangles) + " triangles or more to simplify");
+    } else {
+      t.done(lod.triangles, lod.level_triangles.back(),
+             std::to_string(lod.simplified) + " of " + std::to_string(lod.clusters) + " clusters; " +
+                 std::to_string(lod.triangles) + " triangles -> " + std::to_string(lod.level_triangles[0]) +
+                 ", " + std::to_string(lod.level_triangles[1]) + ", " +
+                 std::to_string(lod.level_triangles[2]));
+    }
   }
   for (const auto& s : stages)
     out.stages.push_back({out.add_string(s.name), s.ran ? 1u : (s.reused ? 2u : 0u),

@@ -120,6 +120,8 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kClusters, c.clusters),
       pending(section::kLeakPath, c.leak_path),
       pending(section::kClusterPolygons, c.cluster_polygons),
+      pending(section::kLodIndices, c.lod_indices),
+      pending(section::kLodRanges, c.lod_ranges),
       pending(section::kStages, c.stages),
       PendingSection{section::kStrings, 1, c.strings.data(), c.strings.size()}};
 
@@ -261,6 +263,8 @@ void Bundle::validate() {
   get(section::kClusters, clusters_, false);
   get(section::kLeakPath, leak_path_, false);
   get(section::kClusterPolygons, cluster_polygons_, false);
+  get(section::kLodIndices, lod_indices_, false);
+  get(section::kLodRanges, lod_ranges_, false);
   get(section::kStages, stages_, true);
   get(section::kStrings, strings_, true);
 
@@ -349,6 +353,18 @@ void Bundle::validate() {
   }
   for (std::uint32_t id : cluster_polygons_)
     if (id >= polygons_.size()) fail("CLPO refers to a polygon out of range");
+  if (!lod_ranges_.empty() && lod_ranges_.size() != clusters_.size() * kLodLevels)
+    fail("LODR holds " + std::to_string(lod_ranges_.size()) + " records, expected " +
+         std::to_string(kLodLevels) + " per cluster (" + std::to_string(clusters_.size()) + ")");
+  for (std::size_t i = 0; i < lod_ranges_.size(); ++i) {
+    const auto& r = lod_ranges_[i];
+    if (r.first_index > lod_indices_.size() || r.index_count > lod_indices_.size() - r.first_index ||
+        r.index_count % 3 != 0)
+      fail("LODR " + std::to_string(i) + " index range runs past LODX or is not whole triangles");
+    if (!std::isfinite(r.error) || r.error < 0.0f) fail("LODR " + std::to_string(i) + " has a bad error");
+  }
+  for (std::uint32_t v : lod_indices_)
+    if (v >= vertices_.size()) fail("LODX refers to a vertex out of range");
   const std::size_t pvs_targets = clusters_.empty() ? polygons_.size() : clusters_.size();
   for (std::uint32_t id : pvs_)
     if (id >= pvs_targets)

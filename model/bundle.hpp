@@ -34,6 +34,8 @@ struct BundleContents {
   std::vector<std::uint32_t> pvs;  // cluster ids (polygon ids when `clusters` is empty)
   std::vector<ClusterRecord> clusters;
   std::vector<std::uint32_t> cluster_polygons;
+  std::vector<std::uint32_t> lod_indices;       // empty, or LODX
+  std::vector<LodRangeRecord> lod_ranges;       // empty, or kLodLevels per cluster
   std::vector<std::array<float, 3>> leak_path;  // empty, or seed -> portals -> the largest leak (local)
   std::vector<StageRecord> stages;
   std::string strings{'\0'};  // offset 0 is the empty string
@@ -83,6 +85,9 @@ class Bundle {
   [[nodiscard]] std::span<const ClusterRecord> clusters() const { return clusters_; }
   [[nodiscard]] std::span<const std::array<float, 3>> leak_path() const { return leak_path_; }
   [[nodiscard]] std::span<const std::uint32_t> cluster_polygons() const { return cluster_polygons_; }
+  // Empty, or kLodLevels records per cluster over lod_indices().
+  [[nodiscard]] std::span<const std::uint32_t> lod_indices() const { return lod_indices_; }
+  [[nodiscard]] std::span<const LodRangeRecord> lod_ranges() const { return lod_ranges_; }
   // The polygons `cell` may see (its PVS's clusters expanded), sorted.
   [[nodiscard]] std::vector<std::uint32_t> cell_polygons(std::uint32_t cell) const;
   [[nodiscard]] std::span<const StageRecord> stages() const { return stages_; }
@@ -119,6 +124,8 @@ class Bundle {
   std::span<const ClusterRecord> clusters_;
   std::span<const std::array<float, 3>> leak_path_;
   std::span<const std::uint32_t> cluster_polygons_;
+  std::span<const std::uint32_t> lod_indices_;
+  std::span<const LodRangeRecord> lod_ranges_;
   std::span<const StageRecord> stages_;
   std::span<const char> strings_;
 };

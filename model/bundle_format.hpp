@@ -129,6 +129,19 @@ struct ClusterRecord {
 };
 static_assert(sizeof(ClusterRecord) == 32);
 
+// Levels of detail for moving frames, optional: each cluster simplified at compile time (meshoptimizer), its
+// opaque triangles of the coarse form (CIDX) welded by position and reduced to about
+// 1/2, 1/4 and 1/8. LODR holds kLodLevels records per cluster, finest first; a level with no indices means
+// "as the level before". Indices are VERT ids, so the light of the original vertices mixes as ever.
+inline constexpr std::uint32_t kLodLevels = 3;
+struct LodRangeRecord {
+  std::uint32_t first_index;  // into LODX, a multiple of 3
+  std::uint32_t index_count;
+  float error;  // metres: the furthest the simplified surface strays from the cluster's own
+  std::uint32_t reserved = 0;
+};
+static_assert(sizeof(LodRangeRecord) == 16);
+
 // A node of the cell tree: points with plane(p) >= 0 go to `front`. A negative child c is cell -c-1.
 struct NodeRecord {
   double plane[4];
@@ -172,6 +185,8 @@ inline constexpr std::uint32_t kPvs = tag("PVSL");       // cluster indices, per
 inline constexpr std::uint32_t kLeakPath = tag("LEAK");  // optional, float xyz: seed to the largest leak
 inline constexpr std::uint32_t kClusters = tag("CLUS");  // optional, see ClusterRecord
 inline constexpr std::uint32_t kClusterPolygons = tag("CLPO");  // u32 polygon indices of the clusters
+inline constexpr std::uint32_t kLodIndices = tag("LODX");       // optional, u32 VERT ids, see LodRangeRecord
+inline constexpr std::uint32_t kLodRanges = tag("LODR");        // optional, kLodLevels per cluster
 inline constexpr std::uint32_t kStages = tag("STAG");
 inline constexpr std::uint32_t kStrings = tag("STRS");
 }  // namespace section

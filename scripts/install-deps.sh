@@ -14,6 +14,8 @@ packages=(
   libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev libpolyclipping-dev libpng-dev
   # parallel loops of the compiler stages
   libtbb-dev
+  # levels of detail of clusters for moving frames
+  libmeshoptimizer-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
   # reference ray caster compared side by side with ours (optional at build time)

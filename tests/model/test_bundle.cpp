@@ -224,6 +224,34 @@ TEST_F(BundleTest, ClustersExpandToTheirPolygonsAndAreValidated) {
   EXPECT_NE(open_error().find("LEAK"), std::string::npos);
 }
 
+TEST_F(BundleTest, LevelsOfDetailAreReadAndValidated) {
+  BundleContents c = small_bundle();
+  c.clusters.push_back({{0, 0, 0}, {1, 1, 0}, 0, 1});
+  c.cluster_polygons = {0};
+  c.lod_indices = {0, 1, 2};
+  c.lod_ranges = {{0, 3, 0.05f, 0}, {0, 0, 0.0f, 0}, {0, 0, 0.0f, 0}};
+  write_bundle(path_, c);
+  {
+    const auto b = Bundle::open(path_);
+    ASSERT_EQ(b->lod_ranges().size(), kLodLevels);
+    EXPECT_FLOAT_EQ(b->lod_ranges()[0].error, 0.05f);
+    EXPECT_EQ(b->lod_indices().size(), 3u);
+  }
+  c.lod_ranges.pop_back();  // not kLodLevels per cluster
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LODR holds 2 records"), std::string::npos);
+  c.lod_ranges.push_back({0, 6, 0.0f, 0});  // runs past LODX
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LODR 2"), std::string::npos);
+  c.lod_ranges.back() = {0, 0, -1.0f, 0};
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("bad error"), std::string::npos);
+  c.lod_ranges.back() = {0, 0, 0.0f, 0};
+  c.lod_indices = {0, 1, 99};
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LODX"), std::string::npos);
+}
+
 TEST_F(BundleTest, AnOlderFormatNamesItsVersionAndTheFix) {
   write_bundle(path_, small_bundle());
   std::vector<char> b = bytes();
