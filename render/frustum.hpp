@@ -1,28 +1,29 @@
 #pragma once
-// View-frustum culling on top of the PVS: each polygon's bounding box against the six planes of the
-// view-projection matrix (Gribb & Hartmann). Conservative: a box is dropped only when it lies wholly outside
-// one plane. Pure CPU.
+// View-frustum culling on top of the PVS: boxes against the six planes of the view-projection matrix
+// (Gribb & Hartmann). Conservative: a box is dropped only when it lies wholly outside one plane. Pure CPU.
 #include <array>
-#include <cstdint>
 #include <glm/mat4x4.hpp>
-#include <span>
-#include <vector>
-
-#include "model/bundle_format.hpp"
+#include <glm/vec4.hpp>
 
 namespace walk::render {
 
 struct Box {
-  std::array<float, 3> lo, hi;
+  std::array<float, 3> lo, hi;  // lo > hi on any axis: empty, never drawn
+  [[nodiscard]] bool empty() const { return lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]; }
 };
 
-// One box per polygon, from its vertices (empty polygons get an empty box that is always culled).
-[[nodiscard]] std::vector<Box> polygon_boxes(std::span<const model::PolygonRecord> polygons,
-                                             std::span<const model::VertexRecord> vertices);
+// The empty box that any point grown into it becomes.
+[[nodiscard]] Box empty_box();
+void grow(Box& box, const float point[3]);
 
-// The ids among `candidates` whose boxes touch the frustum of `view_projection`.
-[[nodiscard]] std::vector<std::uint32_t> in_frustum(const glm::mat4& view_projection,
-                                                    std::span<const Box> boxes,
-                                                    std::span<const std::uint32_t> candidates);
+class Frustum {
+ public:
+  explicit Frustum(const glm::mat4& view_projection);
+  // False only when the box lies wholly behind one plane (or is empty).
+  [[nodiscard]] bool touches(const Box& box) const;
+
+ private:
+  std::array<glm::vec4, 6> planes_;
+};
 
 }  // namespace walk::render

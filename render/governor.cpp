@@ -20,7 +20,9 @@ FrameGovernor::FrameGovernor(double target_hz)
 
 void FrameGovernor::record_moving(std::uint32_t cell, MovingLevel level, double ms) {
   if (!(ms >= 0.0) || !std::isfinite(ms)) return;
-  auto [it, fresh] = moving_.try_emplace(cell, std::array<double, kMovingLevels>{-1.0, -1.0, -1.0});
+  std::array<double, kMovingLevels> unknown;
+  unknown.fill(-1.0);
+  auto [it, fresh] = moving_.try_emplace(cell, unknown);
   double& slot = it->second[std::size_t(level)];
   slot = blend(slot, ms);
 }

@@ -9,10 +9,15 @@
 
 namespace walk::render {
 
-// Cheapest first. Reduced: coarse light drawn at half resolution and scaled up (on llvmpipe, fill is most of
-// a frame's cost, so this is the level that buys time); Coarse: flat polygon light; Patches: per vertex.
-enum class MovingLevel : std::uint8_t { Reduced = 0, Coarse = 1, Patches = 2 };
-inline constexpr int kMovingLevels = 3;
+// Cheapest first. Reduced: Simplified drawn at half resolution and scaled up, the last resort; Simplified:
+// flat polygon light with each cluster at its coarsest level of detail whose error projects under
+// kSimplifiedErrorPixels; Coarse: flat polygon light, every triangle of the coarse form; Patches: per vertex.
+enum class MovingLevel : std::uint8_t { Reduced = 0, Simplified = 1, Coarse = 2, Patches = 3 };
+inline constexpr int kMovingLevels = 4;
+// Screen-space error of the simplified levels, in pixels of the full-size frame: about one pixel is where a
+// moving silhouette's shift stops being seen; at half resolution two full-size pixels are one drawn.
+inline constexpr float kSimplifiedErrorPixels = 1.0f;
+inline constexpr float kReducedErrorPixels = 2.0f;
 
 class FrameGovernor {
  public:

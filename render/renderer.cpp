@@ -10,11 +10,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "model/error.hpp"
 #include "model/model.hpp"
 #include "render/accumulator.hpp"
 #include "render/camera.hpp"
+#include "render/cluster_layout.hpp"
 #include "render/diagonals.hpp"
 #include "render/draw_list.hpp"
 #include "render/framebuffer.hpp"
@@ -37,11 +39,13 @@ struct Renderer::Impl {
   GLsizei shaded_vertices = 0;
   GLint u_view_projection = -1, u_light = -1, u_circuit_count = -1, u_levels = -1, u_ambient = -1,
         u_inv_exposure = -1, u_opacity = -1, u_polygon_light = -1, u_patch_weight = -1;
-  GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_ibo = 0,
-         light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0;
-  // The coarse form (CIDX), drawn with flat polygon light while moving: POLY's records with their index
-  // ranges pointing into CIDX, so the draw-list code serves both. Empty when the bundle has no coarse form.
-  std::vector<model::PolygonRecord> coarse_polygons;
+  GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_vbo = 0,
+         coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0;
+  // Both index forms laid out cluster by cluster (fine INDX; coarse CIDX, drawn with flat polygon light
+  // while moving, empty when the bundle has none), and each cell's PVS as units of that layout.
+  ClusterLayout layout;
+  std::vector<std::optional<std::vector<std::uint32_t>>> cell_units;  // made on first visit
+  std::vector<std::uint32_t> every_unit;
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
   // Coarse light: PLGT per circuit kept here, mixed on the CPU when the levels change (polygons x circuits,
@@ -50,18 +54,12 @@ struct Renderer::Impl {
   std::vector<float> polygon_mixed_levels{-1.0f};  // levels of the mix in polygon_buffer; -1: none yet
   void update_polygon_mix();
   std::vector<float> levels;
-  std::vector<std::optional<DrawList>> cell_lists, coarse_cell_lists;  // built on first visit
-  std::optional<DrawList> all_list, coarse_all_list;
+  DrawList list;  // this frame's
   bool culling = true;
   float glass_opacity = 0.25f;
   bool present_to_window = false;
   bool pvs_culling = true;
-  bool frustum_culling = false;
-  std::vector<Box> boxes;  // per polygon, made when frustum culling is first used
-  // The frustum test's candidates (the cell's PVS expanded, or every polygon), made when the cell changes.
-  std::optional<std::uint32_t> candidates_cell;
-  std::vector<std::uint32_t> candidates;
-  DrawList frustum_list;  // this frame's list when frustum culling is on
+  bool frustum_culling = true;
   bool map_overlay = false;
   float map_fraction = 0.35f;
   GLint u_clip_plane = -1;
@@ -91,6 +89,7 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &ibo);
     glDeleteBuffers(1, &refined_ibo);
     glDeleteBuffers(1, &coarse_ibo);
+    glDeleteBuffers(1, &coarse_vbo);
     glDeleteVertexArrays(1, &coarse_vao);
     glDeleteBuffers(1, &shaded_vbo);
     glDeleteVertexArrays(1, &shaded_vao);
@@ -101,21 +100,19 @@ struct Renderer::Impl {
     glDeleteVertexArrays(1, &vao);
   }
 
-  // The index ranges of the fine (INDX) or coarse (CIDX) form.
-  [[nodiscard]] std::span<const model::PolygonRecord> polygons(bool coarse) const {
-    return coarse ? std::span<const model::PolygonRecord>(coarse_polygons) : bundle.polygons();
-  }
-  const DrawList& list_for(std::uint32_t cell, bool coarse) {
-    if (cell >= cell_lists.size()) {
-      auto& all = coarse ? coarse_all_list : all_list;
-      if (!all) all = build_draw_list_all(polygons(coarse));
-      return *all;
-    }
-    auto& slot = (coarse ? coarse_cell_lists : cell_lists)[cell];
+  // The units `cell` may see (every unit without cells or outside them all).
+  const std::vector<std::uint32_t>& units_for(std::uint32_t cell) {
+    if (cell >= cell_units.size()) return every_unit;
+    auto& slot = cell_units[cell];
     if (!slot) {
-      slot = build_draw_list(polygons(coarse), bundle.cell_polygons(cell));
+      const auto& c = bundle.cells()[cell];
+      slot = units_of(layout, bundle.pvs().subspan(c.pvs_first, c.pvs_count));
     }
     return *slot;
+  }
+  // Per frame: the cell's units, less those outside the frustum when one is given.
+  DrawList list_for(std::uint32_t cell, bool coarse, const Frustum* frustum, const LodChoice* lod = nullptr) {
+    return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, units_for(cell), frustum, lod);
   }
 
   void draw_scene(const View& view, int width, int height, const DrawOptions& options);
@@ -194,7 +191,6 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(bundle)) {
   auto& r = *impl_;
   const auto vertices = bundle.vertices();
-  const auto indices = bundle.indices();
   const std::size_t circuits = bundle.circuits().size();
   if (circuits > std::size_t(kMaxCircuits))
     throw Error("bundle '" + bundle.path() + "' has " + std::to_string(circuits) +
@@ -226,8 +222,10 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   r.levels.resize(circuits);
   for (std::size_t c = 0; c < circuits; ++c)
     r.levels[c] = std::clamp(bundle.circuits()[c].default_level, 0.0f, 1.0f);
-  r.cell_lists.resize(bundle.cells().size());
-  r.coarse_cell_lists.resize(bundle.cells().size());
+  r.layout = lay_out_clusters(layout_input(bundle));
+  r.every_unit = all_units(r.layout);
+  r.cell_units.resize(bundle.cells().size());
+  const auto& indices = r.layout.fine.indices;
 
   // Static geometry: the VERT records are uploaded as they are (stride 40) and never touched again. A second
   // VAO shares them with the refined index buffer (same layout as INDX, diagonals chosen by colour).
@@ -237,29 +235,35 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   glGenBuffers(1, &r.ibo);
   glBindBuffer(GL_COPY_WRITE_BUFFER,
                r.ibo);  // no VAO bound yet: upload through a target that is not VAO state
-  glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(indices.size_bytes()), indices.data(), GL_STATIC_DRAW);
+  const GLsizeiptr index_bytes = GLsizeiptr(indices.size() * sizeof(std::uint32_t));
+  glBufferData(GL_COPY_WRITE_BUFFER, index_bytes, indices.data(), GL_STATIC_DRAW);
   glGenBuffers(1, &r.refined_ibo);
   glBindBuffer(GL_COPY_WRITE_BUFFER, r.refined_ibo);
-  glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(indices.size_bytes()), indices.data(), GL_DYNAMIC_DRAW);
-  const auto coarse_indices = bundle.coarse_indices();
+  glBufferData(GL_COPY_WRITE_BUFFER, index_bytes, indices.data(), GL_DYNAMIC_DRAW);
+  const auto& coarse_indices = r.layout.coarse.indices;
   if (!coarse_indices.empty()) {
-    r.coarse_polygons.assign(bundle.polygons().begin(), bundle.polygons().end());
-    for (std::size_t p = 0; p < r.coarse_polygons.size(); ++p) {
-      r.coarse_polygons[p].first_index = bundle.coarse_ranges()[p].first_index;
-      r.coarse_polygons[p].index_count = bundle.coarse_ranges()[p].index_count;
-    }
     glGenBuffers(1, &r.coarse_ibo);
     glBindBuffer(GL_COPY_WRITE_BUFFER, r.coarse_ibo);
-    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(coarse_indices.size_bytes()), coarse_indices.data(),
-                 GL_STATIC_DRAW);
+    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(coarse_indices.size() * sizeof(std::uint32_t)),
+                 coarse_indices.data(), GL_STATIC_DRAW);
+    // The coarse form's own vertices (see LaidOutForm::vertices): copies of VERT records in its numbering.
+    // Its light is per polygon, so the shader never reads LGHT by gl_VertexID from them.
+    std::vector<model::VertexRecord> coarse_vertices;
+    coarse_vertices.reserve(r.layout.coarse.vertices.size());
+    for (const std::uint32_t v : r.layout.coarse.vertices) coarse_vertices.push_back(vertices[v]);
+    glGenBuffers(1, &r.coarse_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, r.coarse_vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(coarse_vertices.size() * sizeof(model::VertexRecord)),
+                 coarse_vertices.data(), GL_STATIC_DRAW);
   }
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-  for (auto [vao, ibo] : {std::pair{&r.vao, r.ibo}, std::pair{&r.refined_vao, r.refined_ibo},
-                          std::pair{&r.coarse_vao, r.coarse_ibo}}) {
+  for (auto [vao, vbo, ibo] :
+       {std::tuple{&r.vao, r.vbo, r.ibo}, std::tuple{&r.refined_vao, r.vbo, r.refined_ibo},
+        std::tuple{&r.coarse_vao, r.coarse_vbo, r.coarse_ibo}}) {
     if (ibo == 0) continue;
     glGenVertexArrays(1, vao);
     glBindVertexArray(*vao);
-    glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
                           reinterpret_cast<const void*>(offsetof(model::VertexRecord, position)));
@@ -411,25 +415,15 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   const std::uint32_t list_cell = r.pvs_culling && r.culling ? cell : FrameStats::kNoCell;
   // Flat polygon light needs no diced vertices: the coarse form draws the same surfaces in far fewer
   // triangles.
-  const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.coarse_polygons.empty();
-  const DrawList* chosen = &r.list_for(list_cell, coarse);
-  if (r.frustum_culling) {
-    // The PVS's polygons (or all), less those wholly outside this frame's frustum, merged again.
-    if (r.boxes.empty()) r.boxes = polygon_boxes(r.bundle.polygons(), r.bundle.vertices());
-    if (r.candidates_cell != list_cell) {
-      if (list_cell < r.bundle.cells().size()) {
-        r.candidates = r.bundle.cell_polygons(list_cell);
-      } else {
-        r.candidates.resize(r.bundle.polygons().size());
-        for (std::uint32_t i = 0; i < r.candidates.size(); ++i) r.candidates[i] = i;
-      }
-      r.candidates_cell = list_cell;
-    }
-    r.frustum_list =
-        build_draw_list(r.polygons(coarse), in_frustum(view_projection_matrix, r.boxes, r.candidates));
-    chosen = &r.frustum_list;
-  }
-  const DrawList& list = *chosen;
+  const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.layout.coarse.empty();
+  // The cell's PVS clusters, less those wholly outside this frame's frustum.
+  const Frustum frustum(view_projection_matrix);
+  // Levels of detail only with flat light: a level's vertices carry their own polygon's light.
+  const double pixels_per_radian = double(full_height) / glm::radians(view.fov_y_degrees);
+  const LodChoice lod{glm::vec3(view.eye), float(pixels_per_radian), coarse ? options.lod_pixels : 0.0f};
+  r.list = r.list_for(list_cell, coarse, r.frustum_culling ? &frustum : nullptr,
+                      lod.max_pixels > 0.0f ? &lod : nullptr);
+  const DrawList& list = r.list;
 
   glBindFramebuffer(GL_FRAMEBUFFER, target.id());
   glViewport(0, 0, width, height);
@@ -571,9 +565,9 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glUniform1f(u_patch_weight, 0.0f);  // flat polygon light: a plan, not a picture
   glUniform1f(u_opacity, 1.0f);
   // Flat light: the coarse form where the bundle has one.
-  const bool coarse = !coarse_polygons.empty();
+  const bool coarse = !layout.coarse.empty();
   glBindVertexArray(coarse ? coarse_vao : vao);
-  draw_batch(list_for(FrameStats::kNoCell, coarse).opaque);
+  draw_batch(list_for(FrameStats::kNoCell, coarse, nullptr).opaque);
   glDisable(GL_CLIP_DISTANCE0);
   glUniform4f(u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
 
@@ -615,7 +609,7 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
 
 // The mix is computed here exactly as the vertex shader does, once per diagonal choice (not per frame).
 void Renderer::Impl::choose_diagonals() {
-  if (quads.empty()) quads = find_quads(bundle.polygons(), bundle.indices(), bundle.vertices());
+  if (quads.empty()) quads = find_quads(layout.fine.polygons, layout.fine.indices, bundle.vertices());
   const auto vertices = bundle.vertices();
   const auto light = bundle.light();
   const std::size_t circuits = levels.size();
@@ -630,7 +624,7 @@ void Renderer::Impl::choose_diagonals() {
     }
     colour[v] = c;
   }
-  if (refined_indices.empty()) refined_indices.assign(bundle.indices().begin(), bundle.indices().end());
+  if (refined_indices.empty()) refined_indices = layout.fine.indices;
   stats.quads_flipped = std::uint32_t(render::choose_diagonals(quads, colour, refined_indices));
 
   // Subdivision of opaque quads only: glass is blended and drawn last, apart.
@@ -696,9 +690,15 @@ bool Renderer::refine(const View& view, int width, int height) {
   if (step.stage != RefineStage::Accumulating) {
     const bool moving = step.stage == RefineStage::Moving;
     const float resolution = moving && r.moving_level == MovingLevel::Reduced ? 0.5f : 1.0f;
-    r.draw_scene(view, width, height, DrawOptions{step.patch_weight, 0.0f, 0.0f, resolution, step.diagonals});
+    const float lod_pixels = !moving                                     ? 0.0f
+                             : r.moving_level == MovingLevel::Reduced    ? kReducedErrorPixels
+                             : r.moving_level == MovingLevel::Simplified ? kSimplifiedErrorPixels
+                                                                         : 0.0f;
+    r.draw_scene(view, width, height,
+                 DrawOptions{step.patch_weight, 0.0f, 0.0f, resolution, step.diagonals, lod_pixels});
     r.stats.samples = 1;
     if (moving) {
+      r.stats.moving_level = r.moving_level;
       glFinish();
       r.governor.record_moving(r.stats.cell, r.moving_level, milliseconds_since(start));
     }

@@ -42,6 +42,9 @@ struct DrawOptions {
   float jitter_y = 0.0f;
   float resolution = 1.0f;  // below 1: drawn at this fraction of the size and scaled up (moving, Reduced)
   bool diagonals = false;   // quads split along the diagonals last chosen by colour (refine() chooses them)
+  // Above 0 (with flat light): each cluster at its coarsest level of detail whose error projects under this
+  // many pixels of the full-size frame. 0: every triangle.
+  float lod_pixels = 0.0f;
 };
 
 struct FrameStats {
@@ -49,14 +52,15 @@ struct FrameStats {
       0xffffffffu;  // no cells, or the eye is outside all of them: all drawn
   std::uint32_t cell = 0;
   std::uint32_t polygons_drawn = 0;
-  std::uint32_t triangles_drawn = 0;
-  std::uint32_t draw_ranges = 0;  // glMultiDrawElements entries after merging neighbouring polygons
+  std::uint32_t triangles_drawn = 0;  // at the level of detail drawn
+  std::uint32_t draw_ranges = 0;      // glMultiDrawElements entries after merging neighbouring clusters
   std::uint64_t frames_drawn =
       0;  // frames this renderer has drawn (draw() calls and refine() steps that drew)
-  RefineStage stage = RefineStage::Moving;  // what the last refine() step did (Idle: drew nothing)
-  float patch_weight = 1.0f;                // of the last frame drawn
-  float resolution = 1.0f;                  // of the last frame drawn (0.5 at the Reduced moving level)
-  int samples = 1;                          // samples accumulated in the picture now shown
+  RefineStage stage = RefineStage::Moving;          // what the last refine() step did (Idle: drew nothing)
+  MovingLevel moving_level = MovingLevel::Patches;  // the level of the last moving refine() step
+  float patch_weight = 1.0f;                        // of the last frame drawn
+  float resolution = 1.0f;             // of the last frame drawn (0.5 at the Reduced moving level)
+  int samples = 1;                     // samples accumulated in the picture now shown
   std::uint32_t quads_flipped = 0;     // quads split differently from the bundle at the last diagonal choice
   std::uint32_t quads_subdivided = 0;  // quads drawn as bilinear sub-quads at the last choice
   std::uint32_t subdivision_triangles = 0;
@@ -88,8 +92,8 @@ class Renderer {
   [[nodiscard]] float glass_opacity() const;
   // Off: every polygon is drawn whatever the eye's cell (for comparison and benchmarks). On by default.
   void set_pvs_culling(bool enabled);
-  // Off by default: also drop PVS polygons whose bounding box is wholly outside the view frustum (costs a
-  // box test per PVS polygon and a list rebuild per frame).
+  // On by default: also drop the PVS's clusters whose box is wholly outside the view frustum (one box test
+  // per cluster per frame). Off: the cell's whole PVS is drawn.
   void set_frustum_culling(bool enabled);
   void draw(const View& view, int width, int height);
   void draw(const View& view, int width, int height, const DrawOptions& options);

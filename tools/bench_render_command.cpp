@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <glm/geometric.hpp>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "compiler/pipeline.hpp"
@@ -93,10 +94,59 @@ std::vector<render::View> scripted_walk(const model::Bundle& bundle, int frames)
   return views;
 }
 
-void row(const std::string& scene, const std::string& section, const std::string& variant, std::size_t frames,
-         double p50, double p99, double polygons, const std::string& note) {
-  std::printf("%s,%s,%s,%zu,%.2f,%.2f,%.0f,%s\n", scene.c_str(), section.c_str(), variant.c_str(), frames,
-              p50, p99, polygons, note.c_str());
+// What a frame costs in accuracy: against a reference frame of the same view, the mean absolute error in
+// linear light (0..1 per channel) and the share of pixels with a channel off by more than 2/255.
+struct ImageError {
+  double mae_linear = 0.0;
+  double over_2_percent = 0.0;
+};
+
+double srgb_to_linear(std::uint8_t byte) {
+  static const auto table = [] {
+    std::array<double, 256> t{};
+    for (int i = 0; i < 256; ++i) {
+      const double c = i / 255.0;
+      t[std::size_t(i)] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    }
+    return t;
+  }();
+  return table[byte];
+}
+
+ImageError image_error(const render::Image& image, const render::Image& reference) {
+  ImageError e;
+  const std::size_t pixels = std::size_t(image.width) * image.height;
+  std::size_t over = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    bool off = false;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint8_t a = image.rgba[i * 4 + k], b = reference.rgba[i * 4 + k];
+      e.mae_linear += std::abs(srgb_to_linear(a) - srgb_to_linear(b));
+      off = off || std::abs(int(a) - int(b)) > 2;
+    }
+    over += off;
+  }
+  e.mae_linear /= double(pixels * 3);
+  e.over_2_percent = 100.0 * double(over) / double(pixels);
+  return e;
+}
+
+struct Row {
+  std::string section, variant;
+  std::size_t frames = 0;
+  double p50 = 0.0, p99 = 0.0, polygons = 0.0, triangles = 0.0;
+  std::optional<ImageError> error;
+  std::string note;
+};
+
+void print(const std::string& scene, const Row& r) {
+  std::printf("%s,%s,%s,%zu,%.2f,%.2f,%.0f,%.0f,", scene.c_str(), r.section.c_str(), r.variant.c_str(),
+              r.frames, r.p50, r.p99, r.polygons, r.triangles);
+  if (r.error)
+    std::printf("%.5f,%.2f,", r.error->mae_linear, r.error->over_2_percent);
+  else
+    std::printf(",,");
+  std::printf("%s\n", r.note.c_str());
 }
 
 int run(const Options& o) {
@@ -127,7 +177,10 @@ int run(const Options& o) {
     const auto walk = scripted_walk(*bundle, o.frames);
     std::cerr << "backend " << backend->name() << ", " << bundle->polygons().size() << " polygons, "
               << bundle->cells().size() << " cells, " << bundle->circuits().size() << " circuits\n";
-    std::printf("scene,section,variant,frames,p50_ms,p99_ms,mean_polygons,note\n");
+    std::printf(
+        "scene,section,variant,frames,p50_ms,p99_ms,mean_polygons,mean_triangles,mae_linear,pixels_over_2_"
+        "pct,"
+        "note\n");
 
     // Culled and unculled along the same walk; each frame drawn and finished.
     double p50[3] = {};
@@ -138,69 +191,149 @@ int run(const Options& o) {
       renderer.draw(walk.front(), width, height);
       glFinish();
       std::vector<double> times;
-      double polygons = 0.0;
+      double polygons = 0.0, triangles = 0.0;
       for (const auto& v : walk) {
         const auto t0 = Clock::now();
         renderer.draw(v, width, height);
         glFinish();
         times.push_back(ms_since(t0));
         polygons += renderer.last_stats().polygons_drawn;
+        triangles += renderer.last_stats().triangles_drawn;
       }
       p50[culled] = percentile(times, 0.5);
-      row(scene, "walk", names[culled], times.size(), p50[culled], percentile(times, 0.99),
-          polygons / double(walk.size()), "patches; draw + glFinish");
+      print(scene, {"walk",
+                    names[culled],
+                    times.size(),
+                    p50[culled],
+                    percentile(times, 0.99),
+                    polygons / double(walk.size()),
+                    triangles / double(walk.size()),
+                    {},
+                    "patches; draw + glFinish"});
     }
-    std::printf("%s,walk,speedup,%zu,%.2f,,,p50 unculled / p50 culled\n", scene.c_str(), walk.size(),
-                p50[0] / std::max(1e-9, p50[1]));
-    std::printf("%s,walk,speedup-frustum,%zu,%.2f,,,p50 unculled / p50 culled+frustum\n", scene.c_str(),
-                walk.size(), p50[0] / std::max(1e-9, p50[2]));
-    renderer.set_frustum_culling(false);
+    print(scene, {"walk",
+                  "speedup",
+                  walk.size(),
+                  p50[0] / std::max(1e-9, p50[1]),
+                  0,
+                  0,
+                  0,
+                  {},
+                  "p50 unculled / p50 culled"});
+    print(scene, {"walk",
+                  "speedup-frustum",
+                  walk.size(),
+                  p50[0] / std::max(1e-9, p50[2]),
+                  0,
+                  0,
+                  0,
+                  {},
+                  "p50 unculled / p50 culled+frustum"});
+    renderer.set_frustum_culling(true);  // the kiosk's default from here on
 
     // Governed: refine() every frame while moving, culled; the governor picks coarse or patches per cell.
     renderer.set_pvs_culling(true);
     renderer.set_target_rate(o.target_hz);
     std::vector<double> times;
-    double polygons = 0.0;
-    int reduced = 0, coarse = 0;
+    double polygons = 0.0, triangles = 0.0;
+    std::array<int, render::kMovingLevels> at_level{};
     for (int pass = 0; pass < 2; ++pass) {  // the first pass teaches the governor each cell's cost
       times.clear();
-      polygons = 0.0;
-      reduced = coarse = 0;
+      polygons = triangles = 0.0;
+      at_level.fill(0);
       for (const auto& v : walk) {
         const auto t0 = Clock::now();
         renderer.refine(v, width, height);
         times.push_back(ms_since(t0));
         polygons += renderer.last_stats().polygons_drawn;
-        reduced += renderer.last_stats().resolution < 1.0f;
-        coarse += renderer.last_stats().resolution == 1.0f && renderer.last_stats().patch_weight == 0.0f;
+        triangles += renderer.last_stats().triangles_drawn;
+        ++at_level[std::size_t(renderer.last_stats().moving_level)];
       }
     }
     const double budget = 1000.0 / o.target_hz;
-    row(scene, "governed", "moving", times.size(), percentile(times, 0.5), percentile(times, 0.99),
-        polygons / double(walk.size()),
-        std::to_string(reduced) + " half-res + " + std::to_string(coarse) + " coarse + " +
-            std::to_string(walk.size() - std::size_t(reduced + coarse)) + " patch frames; target " +
-            std::to_string(int(budget * 100) / 100.0).substr(0, 5) + " ms; p99 " +
-            (percentile(times, 0.99) <= budget ? "within" : "OVER"));
+    print(scene,
+          {"governed",
+           "moving",
+           times.size(),
+           percentile(times, 0.5),
+           percentile(times, 0.99),
+           polygons / double(walk.size()),
+           triangles / double(walk.size()),
+           {},
+           std::to_string(at_level[0]) + " half-res + " + std::to_string(at_level[1]) + " simplified + " +
+               std::to_string(at_level[2]) + " coarse + " + std::to_string(at_level[3]) +
+               " patch frames; target " + std::to_string(int(budget * 100) / 100.0).substr(0, 5) +
+               " ms; p99 " + (percentile(times, 0.99) <= budget ? "within" : "OVER")});
 
-    // Level costs at one still view: each level drawn alone, then AA sample counts to convergence.
-    const render::View still = walk[walk.size() / 2];
+    // Each level along the walk (every kLevelViewStride-th view): its frame time, triangles and image error
+    // against the full-detail frame (patches, every triangle, full size) of the same view.
     struct Level {
       const char* name;
-      float weight, resolution;
+      render::DrawOptions options;
     };
-    for (const Level& level : {Level{"reduced-half-res", 0.0f, 0.5f}, Level{"coarse", 0.0f, 1.0f},
-                               Level{"blend-0.5", 0.5f, 1.0f}, Level{"patches", 1.0f, 1.0f}}) {
+    const render::DrawOptions full{};
+    const std::vector<Level> levels{
+        {"reduced-half-res",
+         {.patch_weight = 0.0f, .resolution = 0.5f, .lod_pixels = render::kReducedErrorPixels}},
+        {"simplified", {.patch_weight = 0.0f, .lod_pixels = render::kSimplifiedErrorPixels}},
+        {"coarse", {.patch_weight = 0.0f}},
+        {"blend-0.5", {.patch_weight = 0.5f}},
+        {"patches", full}};
+    constexpr std::size_t kLevelViewStride = 8;
+    std::vector<render::Image> reference;
+    for (std::size_t i = 0; i < walk.size(); i += kLevelViewStride) {
+      renderer.draw(walk[i], width, height, full);
+      reference.push_back(renderer.read_pixels(width, height));
+    }
+    for (const Level& level : levels) {
       std::vector<double> t;
-      for (int i = 0; i < 30; ++i) {
+      double triangles_sum = 0.0, polygons_sum = 0.0, ranges_sum = 0.0;
+      ImageError error;
+      for (std::size_t i = 0, k = 0; i < walk.size(); i += kLevelViewStride, ++k) {
         const auto t0 = Clock::now();
-        renderer.draw(still, width, height, render::DrawOptions{level.weight, 0.0f, 0.0f, level.resolution});
+        renderer.draw(walk[i], width, height, level.options);
         glFinish();
         t.push_back(ms_since(t0));
+        triangles_sum += renderer.last_stats().triangles_drawn;
+        polygons_sum += renderer.last_stats().polygons_drawn;
+        ranges_sum += renderer.last_stats().draw_ranges;
+        const ImageError e = image_error(renderer.read_pixels(width, height), reference[k]);
+        error.mae_linear += e.mae_linear / double(reference.size());
+        error.over_2_percent += e.over_2_percent / double(reference.size());
       }
-      row(scene, "level", level.name, t.size(), percentile(t, 0.5), percentile(t, 0.99),
-          renderer.last_stats().polygons_drawn, "one frame");
+      print(scene, {"level", level.name, t.size(), percentile(t, 0.5), percentile(t, 0.99),
+                    polygons_sum / double(t.size()), triangles_sum / double(t.size()), error,
+                    std::to_string(int(ranges_sum / double(t.size()))) +
+                        " draw ranges; views along the walk; error against patches at full detail"});
     }
+    {
+      // The floor under every level: a frame with nothing in view (clear, blit and finish), and the same
+      // frame with the coarsest level of every cluster forced (every error allowed).
+      render::View empty = walk.front();
+      empty.eye.z = bundle->meta().bounds_max[2] + 100.0;
+      empty.forward = {0.0, 0.0, 1.0};
+      empty.up = {1.0, 0.0, 0.0};
+      for (const auto& [name, view, lod] : {std::tuple{"empty-frame", empty, 0.0f},
+                                            std::tuple{"coarsest-lod", walk[walk.size() / 2], 1e9f}}) {
+        std::vector<double> t;
+        for (int i = 0; i < 30; ++i) {
+          const auto t0 = Clock::now();
+          renderer.draw(view, width, height, {.patch_weight = 0.0f, .lod_pixels = lod});
+          glFinish();
+          t.push_back(ms_since(t0));
+        }
+        print(scene, {"level",
+                      name,
+                      t.size(),
+                      percentile(t, 0.5),
+                      percentile(t, 0.99),
+                      double(renderer.last_stats().polygons_drawn),
+                      double(renderer.last_stats().triangles_drawn),
+                      {},
+                      "one view"});
+      }
+    }
+    const render::View still = walk[walk.size() / 2];
     for (int samples : {1, 4, 16, 64}) {
       renderer.set_refine_settings({.blend_steps = 0, .aa_samples = samples, .samples_per_frame = 1});
       renderer.set_moving_level(render::MovingLevel::Patches);
@@ -211,17 +344,31 @@ int run(const Options& o) {
       const double choose = ms_since(t0);
       if (samples == 1) {
         const auto& st = renderer.last_stats();
-        row(scene, "level", "diagonals+subdivision", 1, choose, choose, st.polygons_drawn,
-            std::to_string(st.quads_flipped) + " quads flipped; " + std::to_string(st.quads_subdivided) +
-                " subdivided into " + std::to_string(st.subdivision_triangles) +
-                " triangles (CPU + upload + frame)");
+        print(scene, {"level",
+                      "diagonals+subdivision",
+                      1,
+                      choose,
+                      choose,
+                      double(st.polygons_drawn),
+                      double(st.triangles_drawn),
+                      {},
+                      std::to_string(st.quads_flipped) + " quads flipped; " +
+                          std::to_string(st.quads_subdivided) + " subdivided into " +
+                          std::to_string(st.subdivision_triangles) + " triangles (CPU + upload + frame)"});
       }
       t0 = Clock::now();
       while (renderer.refine(still, width, height)) {
       }
       const double total = ms_since(t0);
-      row(scene, "aa", std::to_string(samples) + "-samples", std::size_t(samples), total / samples, total,
-          renderer.last_stats().polygons_drawn, "p50 column: ms per sample; p99 column: ms to converge");
+      print(scene, {"aa",
+                    std::to_string(samples) + "-samples",
+                    std::size_t(samples),
+                    total / samples,
+                    total,
+                    double(renderer.last_stats().polygons_drawn),
+                    double(renderer.last_stats().triangles_drawn),
+                    {},
+                    "p50 column: ms per sample; p99 column: ms to converge"});
     }
   }
   if (!temp.empty()) std::filesystem::remove_all(temp);

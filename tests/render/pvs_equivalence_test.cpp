@@ -21,6 +21,7 @@ TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
   ASSERT_EQ(bundle->cells().size(), 4u);
   Renderer culled(*bundle), unculled(*bundle);
   unculled.set_pvs_culling(false);
+  for (Renderer* r : {&culled, &unculled}) r->set_frustum_culling(false);  // the PVS alone
   int views = 0;
   bool cells_seen[4] = {};
   for (double x : {1.0, 3.0, 5.0, 7.0})
@@ -45,7 +46,8 @@ TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
   for (bool seen : cells_seen) EXPECT_TRUE(seen);
 }
 
-// Frustum culling on top of the PVS drops polygons behind or beside the viewer, never a visible one.
+// Frustum culling of clusters on top of the PVS drops polygons behind or beside the viewer, never a visible
+// one.
 TEST_P(PvsEquivalenceTest, FrustumCulledFrameEqualsUnculledFrame) {
   auto backend = headless(GetParam());
   TwoRooms scene;
@@ -53,8 +55,9 @@ TEST_P(PvsEquivalenceTest, FrustumCulledFrameEqualsUnculledFrame) {
   scene.subdivisions = 3;
   auto bundle = open_two_rooms(scene, "frustum_equivalence");
   Renderer culled(*bundle), unculled(*bundle);
-  culled.set_frustum_culling(true);
+  culled.set_frustum_culling(true);  // the default
   unculled.set_pvs_culling(false);
+  unculled.set_frustum_culling(false);
   int fewer = 0;
   for (double x : {1.0, 3.0, 5.0, 7.0})
     for (int turn = 0; turn < 8; ++turn) {

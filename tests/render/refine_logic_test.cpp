@@ -108,37 +108,42 @@ TEST(FrameGovernor, ANewCellStartsAtTheLevelOfTheCellJustLeft) {
   EXPECT_EQ(governor.choose_moving(7), MovingLevel::Patches) << "its own cheap frame: try patches there";
 }
 
-TEST(FrameGovernor, HalfResolutionIsTheFloorWhenCoarseIsTooSlow) {
+TEST(FrameGovernor, SimplifiedComesBeforeHalfResolutionWhichIsTheFloor) {
   FrameGovernor governor(60.0);
   governor.record_moving(4, MovingLevel::Patches, 40.0);
   governor.record_moving(4, MovingLevel::Coarse, 25.0);
+  EXPECT_EQ(governor.choose_moving(4), MovingLevel::Simplified) << "fewer triangles before fewer pixels";
+  governor.record_moving(4, MovingLevel::Simplified, 20.0);
   EXPECT_EQ(governor.choose_moving(4), MovingLevel::Reduced);
   governor.record_moving(4, MovingLevel::Reduced, 40.0);
   EXPECT_EQ(governor.choose_moving(4), MovingLevel::Reduced) << "nothing cheaper: stay at the floor";
-  // Reduced known cheap and coarse never tried: try coarse.
+  // Reduced known cheap and the levels above it never tried: try the one above.
   governor.record_moving(5, MovingLevel::Patches, 40.0);
   governor.record_moving(5, MovingLevel::Reduced, 4.0);
   EXPECT_EQ(governor.choose_moving(5), MovingLevel::Coarse);
+  governor.record_moving(5, MovingLevel::Coarse, 30.0);
+  EXPECT_EQ(governor.choose_moving(5), MovingLevel::Simplified);
 }
 
 TEST(FrameGovernor, ProbesTheNextLevelUpNowAndThen) {
   FrameGovernor governor(60.0);
   governor.record_moving(6, MovingLevel::Patches, 40.0);
-  governor.record_moving(6, MovingLevel::Coarse, 40.0);  // one slow frame on a busy CPU
+  governor.record_moving(6, MovingLevel::Coarse, 40.0);
+  governor.record_moving(6, MovingLevel::Simplified, 40.0);  // one slow frame on a busy CPU
   governor.record_moving(6, MovingLevel::Reduced, 5.0);
   int probes = 0;
   for (int i = 1; i <= 2 * FrameGovernor::kProbeInterval; ++i) {
     const MovingLevel level = governor.choose_moving(6);
     if (level != MovingLevel::Reduced) {
-      EXPECT_EQ(level, MovingLevel::Coarse) << "one level up, not two";
+      EXPECT_EQ(level, MovingLevel::Simplified) << "one level up, not two";
       EXPECT_EQ(i % FrameGovernor::kProbeInterval, 0) << "choice " << i;
       ++probes;
     }
   }
   EXPECT_EQ(probes, 2);
-  // The probe measured coarse as cheap now: the estimate follows and coarse is chosen from then on.
-  for (int i = 0; i < 10; ++i) governor.record_moving(6, MovingLevel::Coarse, 6.0);
-  EXPECT_EQ(governor.choose_moving(6), MovingLevel::Coarse);
+  // The probe measured simplified as cheap now: the estimate follows and it is chosen from then on.
+  for (int i = 0; i < 10; ++i) governor.record_moving(6, MovingLevel::Simplified, 6.0);
+  EXPECT_EQ(governor.choose_moving(6), MovingLevel::Simplified);
 }
 
 TEST(FrameGovernor, SamplesPerFrameFollowTheSampleCost) {

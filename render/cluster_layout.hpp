@@ -1,0 +1,95 @@
+#pragma once
+// Clusters as the renderer's unit of drawing. At load time each index form (fine INDX, coarse CIDX) is copied
+// cluster by cluster into the renderer's own buffer, opaque polygons first and glass after, so a cluster is
+// one range of each. Clusters keep the compiler's draw order (its Gray order of cell membership): clusters a
+// cell sees together sit together and merge into one range. A frame's draw list is then made from the
+// cell's PVS clusters and one box test each, with no per-polygon work (Complex buildings 2).
+#include <array>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <span>
+#include <vector>
+
+#include "model/bundle.hpp"
+#include "render/draw_list.hpp"
+#include "render/frustum.hpp"
+
+namespace walk::render {
+
+struct IndexRange {
+  std::uint32_t first = 0;  // in indices
+  std::uint32_t count = 0;
+};
+
+// What the layout is made from: a bundle's spans, or a test's own.
+struct LayoutInput {
+  std::span<const model::PolygonRecord> polygons;
+  std::span<const model::VertexRecord> vertices;
+  std::span<const std::uint32_t> indices;
+  std::span<const model::CoarseRangeRecord> coarse_ranges;  // empty: no coarse form
+  std::span<const std::uint32_t> coarse_indices;
+  std::span<const model::ClusterRecord> clusters;  // empty: one cluster per polygon
+  std::span<const std::uint32_t> cluster_polygons;
+  std::span<const model::LodRangeRecord> lod_ranges;  // empty: no levels of detail
+  std::span<const std::uint32_t> lod_indices;
+};
+[[nodiscard]] LayoutInput layout_input(const model::Bundle& bundle);
+
+// One index form laid out by unit (a cluster in draw order).
+struct LaidOutForm {
+  std::vector<std::uint32_t> indices;
+  std::vector<IndexRange> opaque, glass;  // per unit
+  // Per polygon, its range in `indices` (count 0 when it is not drawn): what the diagonal choice rewrites.
+  std::vector<model::PolygonRecord> polygons;
+  // Levels of detail, in the coarse form (the one the compiler simplified; none without it): per unit,
+  // kLodLevels opaque ranges laid out level by level after the glass, so units at one level still merge.
+  // A level the bundle lacks repeats the one before (the unit's own range for the first); error in metres.
+  std::vector<std::array<IndexRange, model::kLodLevels>> lod;
+  std::vector<std::array<float, model::kLodLevels>> lod_error;
+  // Where each region of `indices` starts: opaque, glass, then each level.
+  std::vector<std::uint32_t> regions;
+  // The coarse form's own vertices: the VERT id of each, numbered by first use within each region, so a
+  // range of indices refers to a dense run of vertices. A software vertex stage (llvmpipe's draw module)
+  // shades a draw's whole index span [min, max]: over VERT's numbering a simplified cluster's few
+  // triangles span every diced vertex of its polygons, and a merged range everything between. Empty for
+  // the fine form, whose light is fetched by gl_VertexID and so keeps VERT's numbering.
+  std::vector<std::uint32_t> vertices;
+  [[nodiscard]] bool empty() const { return indices.empty() && opaque.empty(); }
+};
+
+// How coarse a frame may draw: a unit is drawn at its coarsest level whose error, seen from `eye` at the
+// unit box's nearest point, spans at most `max_pixels` pixels.
+struct LodChoice {
+  glm::vec3 eye{0.0f};
+  float pixels_per_radian = 1.0f;  // image height / vertical field of view (radians), near the centre
+  float max_pixels = 0.0f;         // 0: full detail
+};
+
+struct ClusterLayout {
+  std::vector<Box> boxes;              // per unit: the box of its drawn polygons (empty box: nothing drawn)
+  std::vector<std::uint32_t> drawn;    // per unit: polygons drawn
+  std::vector<std::uint32_t> unit_of;  // per PVS id (a bundle cluster, or a polygon without CLUS)
+  LaidOutForm fine, coarse;            // coarse is empty when the bundle has no coarse form
+  [[nodiscard]] std::size_t units() const { return boxes.size(); }
+};
+
+[[nodiscard]] ClusterLayout lay_out_clusters(const LayoutInput& input);
+
+// The units of `pvs_ids` (bundle cluster ids, or polygon ids without CLUS), sorted, duplicates and
+// out-of-range ids dropped.
+[[nodiscard]] std::vector<std::uint32_t> units_of(const ClusterLayout& layout,
+                                                  std::span<const std::uint32_t> pvs_ids);
+// Every unit, in order.
+[[nodiscard]] std::vector<std::uint32_t> all_units(const ClusterLayout& layout);
+
+// The draw list of `units` (sorted) in `form`, less the units whose box lies outside `frustum` when one is
+// given; ranges that meet are merged.
+// With `lod` (and a form that has levels), each unit's opaque range is its level's.
+[[nodiscard]] DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
+                                         std::span<const std::uint32_t> units, const Frustum* frustum,
+                                         const LodChoice* lod = nullptr);
+// The level `lod` picks for unit `u` of `form` (0: its own range; l + 1: LOD level l).
+[[nodiscard]] int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u,
+                            const LodChoice& lod);
+
+}  // namespace walk::render

@@ -1,0 +1,189 @@
+// Clusters to index ranges: the layout copies each cluster's polygons together (opaque, then glass), skips
+// what is not drawn, keeps the compiler's order, and a frame's list merges clusters that meet and drops
+// those outside the frustum.
+#include "render/cluster_layout.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace walk::render {
+namespace {
+
+using R = model::Role;
+
+// Polygon p is a square of two triangles at x = p (4 vertices, 6 indices), its indices in id order.
+struct Scene {
+  std::vector<model::PolygonRecord> polygons;
+  std::vector<model::VertexRecord> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<model::ClusterRecord> clusters;
+  std::vector<std::uint32_t> cluster_polygons;
+  explicit Scene(std::initializer_list<R> roles) {
+    for (R role : roles) {
+      model::PolygonRecord p{};
+      p.first_index = std::uint32_t(indices.size());
+      p.index_count = 6;
+      p.first_vertex = std::uint32_t(vertices.size());
+      p.vertex_count = 4;
+      p.role = std::uint32_t(role);
+      const float x = float(polygons.size());
+      for (const auto& [y, z] : {std::pair{0.f, 0.f}, {1.f, 0.f}, {1.f, 1.f}, {0.f, 1.f}}) {
+        model::VertexRecord v{};
+        v.position[0] = x, v.position[1] = y, v.position[2] = z;
+        vertices.push_back(v);
+      }
+      for (std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) indices.push_back(p.first_vertex + k);
+      polygons.push_back(p);
+    }
+  }
+  void cluster(std::initializer_list<std::uint32_t> ids) {
+    model::ClusterRecord c{};
+    c.polygon_first = std::uint32_t(cluster_polygons.size());
+    c.polygon_count = std::uint32_t(ids.size());
+    cluster_polygons.insert(cluster_polygons.end(), ids);
+    clusters.push_back(c);
+  }
+  [[nodiscard]] LayoutInput input() const {
+    return {polygons, vertices, indices, {}, {}, clusters, cluster_polygons, {}, {}};
+  }
+};
+
+TEST(ClusterLayout, ClustersAreRangesInTheCompilersOrderWithGlassApartAndHolesSkipped) {
+  Scene s(
+      {R::Opaque, R::Opaque, R::Glass, R::Opening, R::Luminaire, R::Ignored, R::Opaque, R::Glass, R::Glass});
+  s.cluster({6, 4});     // cluster 0: first drawn index 24, so laid out after cluster 1
+  s.cluster({1, 0, 2});  // cluster 1: first index 0; glass 2 goes to the glass region
+  s.cluster({3});        // cluster 2: an opening only, nothing drawn
+  // 7 and 8 (glass) and 5 (ignored) are in no cluster: 7 and 8 become units of their own, 5 is not drawn.
+  const ClusterLayout layout = lay_out_clusters(s.input());
+  ASSERT_EQ(layout.units(), 5u);
+  EXPECT_EQ(layout.unit_of[1], 0u);
+  EXPECT_EQ(layout.unit_of[0], 1u);
+  EXPECT_EQ(layout.unit_of[2], 4u) << "nothing drawn: last";
+  EXPECT_EQ(layout.drawn[0], 3u);
+  EXPECT_EQ(layout.drawn[4], 0u);
+  // Opaque 0, 1, 4, 6 then glass 2, 7, 8: 7 polygons of 6 indices, the opening and the ignored face dropped.
+  ASSERT_EQ(layout.fine.indices.size(), 42u);
+  EXPECT_EQ(layout.fine.opaque[0].first, 0u);
+  EXPECT_EQ(layout.fine.opaque[0].count, 12u);
+  EXPECT_EQ(layout.fine.opaque[1].first, 12u);
+  EXPECT_EQ(layout.fine.glass[0].first, 24u);
+  EXPECT_EQ(layout.fine.glass[0].count, 6u);
+  // Each polygon's new range holds its own indices.
+  for (std::uint32_t p : {0u, 1u, 2u, 4u, 6u, 7u, 8u}) {
+    const auto& moved = layout.fine.polygons[p];
+    ASSERT_EQ(moved.index_count, 6u) << p;
+    for (std::uint32_t k = 0; k < 6; ++k)
+      EXPECT_EQ(layout.fine.indices[moved.first_index + k], s.indices[s.polygons[p].first_index + k]) << p;
+  }
+  EXPECT_EQ(layout.fine.polygons[3].index_count, 0u) << "the opening is not drawn";
+  EXPECT_EQ(layout.fine.polygons[5].index_count, 0u) << "the ignored face is not drawn";
+  // The box of cluster 0 (polygons 4 and 6) spans x 4..6.
+  EXPECT_EQ(layout.boxes[1].lo[0], 4.0f);
+  EXPECT_EQ(layout.boxes[1].hi[0], 6.0f);
+
+  const DrawList all = cluster_draw_list(layout, layout.fine, all_units(layout), nullptr);
+  EXPECT_EQ(all.polygons, 7u);
+  EXPECT_EQ(all.triangles, 14u);
+  ASSERT_EQ(all.opaque.counts.size(), 1u) << "every opaque cluster meets the next";
+  EXPECT_EQ(all.opaque.counts[0], 24);
+  ASSERT_EQ(all.glass.counts.size(), 1u);
+  EXPECT_EQ(all.glass.byte_offsets[0], 24u * sizeof(std::uint32_t));
+
+  // A PVS of clusters 0 and 2 (ids out of range and repeats dropped): one opaque range, no glass.
+  const std::vector<std::uint32_t> pvs{2, 0, 0, 99};
+  const auto units = units_of(layout, pvs);
+  ASSERT_EQ(units.size(), 2u);
+  const DrawList some = cluster_draw_list(layout, layout.fine, units, nullptr);
+  EXPECT_EQ(some.polygons, 2u);
+  ASSERT_EQ(some.opaque.counts.size(), 1u);
+  EXPECT_EQ(some.opaque.byte_offsets[0], 12u * sizeof(std::uint32_t));
+  EXPECT_TRUE(some.glass.empty());
+}
+
+TEST(ClusterLayout, WithoutClustersEachPolygonIsAUnitAndPvsIdsArePolygons) {
+  Scene s({R::Opaque, R::Glass, R::Opaque});
+  const ClusterLayout layout = lay_out_clusters(s.input());
+  ASSERT_EQ(layout.units(), 3u);
+  const std::vector<std::uint32_t> pvs{0, 2};
+  const DrawList list = cluster_draw_list(layout, layout.fine, units_of(layout, pvs), nullptr);
+  EXPECT_EQ(list.polygons, 2u);
+  ASSERT_EQ(list.opaque.counts.size(), 1u) << "0 and 2 meet once the glass between them is laid out apart";
+  EXPECT_EQ(list.opaque.counts[0], 12);
+}
+
+TEST(ClusterLayout, TheFrustumDropsClustersWhollyBehindTheEyeAndKeepsThoseAcrossIt) {
+  Scene s({R::Opaque, R::Opaque, R::Opaque, R::Opaque});
+  s.cluster({0});
+  s.cluster({1, 2});
+  s.cluster({3});
+  const ClusterLayout layout = lay_out_clusters(s.input());
+  // Eye at x = 1.5 looking along +x: the square at x = 0 and 1 are behind it (cluster 0 wholly, cluster 1
+  // spans the eye's plane), x = 3 ahead.
+  const glm::mat4 vp =
+      glm::perspective(glm::radians(60.0f), 1.0f, 0.05f, 100.0f) *
+      glm::lookAt(glm::vec3(1.5f, 0.5f, 0.5f), glm::vec3(2.5f, 0.5f, 0.5f), glm::vec3(0, 0, 1));
+  const Frustum frustum(vp);
+  const DrawList list = cluster_draw_list(layout, layout.fine, all_units(layout), &frustum);
+  EXPECT_EQ(list.polygons, 3u);
+  ASSERT_EQ(list.opaque.counts.size(), 1u);
+  EXPECT_EQ(list.opaque.byte_offsets[0], 6u * sizeof(std::uint32_t));
+  EXPECT_FALSE(frustum.touches(empty_box())) << "an empty box is never drawn";
+  EXPECT_TRUE(frustum.touches(Box{{1.4f, 0.4f, 0.4f}, {1.6f, 0.6f, 0.6f}})) << "a box around the eye is";
+}
+
+// Two clusters of two squares each (the squares' coarse form is their fine form) with one level of detail
+// each: one triangle, error 0.1 m.
+TEST(ClusterLayout, LevelsOfDetailArePickedByProjectedErrorAndDrawnFromDenseVertexRuns) {
+  Scene s({R::Opaque, R::Opaque, R::Opaque, R::Opaque});
+  s.cluster({0, 1});
+  s.cluster({2, 3});
+  std::vector<model::CoarseRangeRecord> coarse;
+  for (const auto& p : s.polygons) coarse.push_back({p.first_index, p.index_count});
+  std::vector<std::uint32_t> lod_indices;
+  std::vector<model::LodRangeRecord> lod_ranges;
+  for (std::uint32_t k = 0; k < 2; ++k) {
+    const std::uint32_t v = s.polygons[k * 2].first_vertex;  // a triangle over the cluster's first square
+    lod_ranges.push_back({std::uint32_t(lod_indices.size()), 3, 0.1f, 0});
+    lod_indices.insert(lod_indices.end(), {v, v + 1, v + 2});
+    for (std::uint32_t l = 1; l < model::kLodLevels; ++l) lod_ranges.push_back({0, 0, 0.0f, 0});
+  }
+  LayoutInput in = s.input();
+  in.coarse_ranges = coarse;
+  in.coarse_indices = s.indices;
+  in.lod_ranges = lod_ranges;
+  in.lod_indices = lod_indices;
+  const ClusterLayout layout = lay_out_clusters(in);
+  const LaidOutForm& form = layout.coarse;
+  ASSERT_EQ(form.lod.size(), 2u);
+  EXPECT_EQ(form.lod[0][0].count, 3u);
+  EXPECT_EQ(form.lod[0][1].first, form.lod[0][0].first) << "a missing level repeats the one before";
+  EXPECT_FLOAT_EQ(form.lod_error[0][2], 0.1f);
+  EXPECT_EQ(form.lod[1][0].first, form.lod[0][0].first + 3) << "one level's units side by side";
+
+  // Each region's vertices are numbered by first use: cluster 0's level uses three of the four vertices
+  // of its first square, which come first in the level's own run after the coarse form's 16 vertices.
+  EXPECT_EQ(form.vertices.size(), 16u + 6u);
+  for (std::uint32_t i = 0; i < 3; ++i) EXPECT_EQ(form.indices[form.lod[0][0].first + i], 16u + i);
+  for (std::size_t v = 0; v < form.vertices.size(); ++v) EXPECT_LT(form.vertices[v], s.vertices.size());
+
+  // 60 degrees over 600 pixels: 0.1 m spans 1 pixel at 0.1 * 600 / (pi / 3) = 57 m.
+  LodChoice lod{glm::vec3(-100.0f, 0.5f, 0.5f), float(600.0 / (3.14159265 / 3.0)), 1.0f};
+  EXPECT_EQ(lod_level(layout, form, 0, lod), model::kLodLevels) << "100 m away: the coarsest";
+  lod.eye = {-10.0f, 0.5f, 0.5f};
+  EXPECT_EQ(lod_level(layout, form, 0, lod), 0) << "10 m away: its own form";
+  lod.max_pixels = 10.0f;
+  EXPECT_EQ(lod_level(layout, form, 0, lod), model::kLodLevels) << "a budget of 10 pixels allows it";
+  const DrawList list = cluster_draw_list(layout, form, all_units(layout), nullptr, &lod);
+  EXPECT_EQ(list.triangles, 2u);
+  ASSERT_EQ(list.opaque.counts.size(), 1u) << "both clusters at one level meet";
+  lod.max_pixels = 0.0f;
+  EXPECT_EQ(cluster_draw_list(layout, form, all_units(layout), nullptr, &lod).triangles, 8u);
+}
+
+}  // namespace
+}  // namespace walk::render
