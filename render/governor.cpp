@@ -8,6 +8,8 @@ namespace {
 
 constexpr double kHeadroom = 0.9;   // frame-time jitter on a shared CPU: aim below the budget
 constexpr double kSmoothing = 0.3;  // weight of the newest measurement
+// Weight kept by the cost model's older frames per new one: about the last 100 frames count.
+constexpr double kModelDecay = 0.99;
 
 double blend(double old_ms, double ms) {
   return old_ms < 0.0 ? ms : (1.0 - kSmoothing) * old_ms + kSmoothing * ms;
@@ -18,8 +20,22 @@ double blend(double old_ms, double ms) {
 FrameGovernor::FrameGovernor(double target_hz)
     : budget_ms_(1000.0 / (target_hz > 0.0 && std::isfinite(target_hz) ? target_hz : 60.0)) {}
 
-void FrameGovernor::record_moving(std::uint32_t cell, MovingLevel level, double ms) {
+void FrameGovernor::record_moving(std::uint32_t cell, MovingLevel level, double ms, double triangles) {
   if (!(ms >= 0.0) || !std::isfinite(ms)) return;
+  if (triangles >= 0.0 && std::isfinite(triangles)) {
+    LineFit& f = models_[std::size_t(level)];
+    const double predicted = predict(level, triangles);
+    if (predicted >= 0.0) {
+      const double miss = ms - predicted;
+      f.miss_squared = kModelDecay * f.miss_squared + (1.0 - kModelDecay) * miss * miss;
+    }
+    f = {kModelDecay * f.n + 1.0,
+         kModelDecay * f.t + triangles,
+         kModelDecay * f.m + ms,
+         kModelDecay * f.tt + triangles * triangles,
+         kModelDecay * f.tm + triangles * ms,
+         f.miss_squared};
+  }
   std::array<double, kMovingLevels> unknown;
   unknown.fill(-1.0);
   auto [it, fresh] = moving_.try_emplace(cell, unknown);
@@ -36,10 +52,20 @@ double FrameGovernor::estimate(std::uint32_t cell, MovingLevel level) const {
   return it == moving_.end() ? -1.0 : it->second[std::size_t(level)];
 }
 
-MovingLevel FrameGovernor::choose_moving(std::uint32_t cell) {
+double FrameGovernor::predict(MovingLevel level, double triangles) const {
+  const LineFit& f = models_[std::size_t(level)];
+  if (f.n < kModelMinFrames || !(triangles >= 0.0)) return -1.0;
+  const double mean_t = f.t / f.n, mean_m = f.m / f.n;
+  const double var = f.tt / f.n - mean_t * mean_t;
+  // Frames that all drew about as much say nothing of the slope: their mean is the prediction.
+  const double slope = var > 1e-6 * (mean_t * mean_t + 1.0) ? (f.tm / f.n - mean_t * mean_m) / var : 0.0;
+  return std::max(0.0, mean_m + std::max(0.0, slope) * (triangles - mean_t));
+}
+
+MovingLevel FrameGovernor::choose_moving(std::uint32_t cell, std::span<const double> triangles) {
   const std::uint32_t judged = !moving_.contains(cell) && last_cell_ ? *last_cell_ : cell;
   last_cell_ = cell;
-  const MovingLevel level = settled(judged);
+  const MovingLevel level = settled(judged, triangles);
   int& count = choices_[cell];
   if (int(level) + 1 < kMovingLevels && ++count >= kProbeInterval) {
     count = 0;
@@ -48,10 +74,16 @@ MovingLevel FrameGovernor::choose_moving(std::uint32_t cell) {
   return level;
 }
 
-MovingLevel FrameGovernor::settled(std::uint32_t cell) const {
+MovingLevel FrameGovernor::settled(std::uint32_t cell, std::span<const double> triangles) const {
+  const auto judged = [&](int l) {
+    const double p =
+        std::size_t(l) < triangles.size() ? predict(MovingLevel(l), triangles[std::size_t(l)]) : -1.0;
+    if (p < 0.0) return estimate(cell, MovingLevel(l));
+    return p + kModelSpread * std::sqrt(models_[std::size_t(l)].miss_squared);
+  };
   for (int l = kMovingLevels - 1; l > 0; --l) {
-    const double e = estimate(cell, MovingLevel(l));
-    const double below = estimate(cell, MovingLevel(l - 1));
+    const double e = judged(l);
+    const double below = judged(l - 1);
     if (e < 0.0) {
       if (below < 0.0 || below <= 0.75 * budget_ms_) return MovingLevel(l);
     } else if (e <= kHeadroom * budget_ms_) {

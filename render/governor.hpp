@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <unordered_map>
 
 namespace walk::render {
@@ -18,13 +19,20 @@ inline constexpr int kMovingLevels = 4;
 // moving silhouette's shift stops being seen; at half resolution two full-size pixels are one drawn.
 inline constexpr float kSimplifiedErrorPixels = 1.0f;
 inline constexpr float kReducedErrorPixels = 2.0f;
+// The screen-space error a moving level allows (0: every triangle of its form).
+[[nodiscard]] constexpr float moving_error_pixels(MovingLevel level) {
+  return level == MovingLevel::Reduced      ? kReducedErrorPixels
+         : level == MovingLevel::Simplified ? kSimplifiedErrorPixels
+                                            : 0.0f;
+}
 
 class FrameGovernor {
  public:
   explicit FrameGovernor(double target_hz = 60.0);
   [[nodiscard]] double budget_ms() const { return budget_ms_; }
-  // A moving frame at `level` in `cell` took `ms` (drawn and finished).
-  void record_moving(std::uint32_t cell, MovingLevel level, double ms);
+  // A moving frame at `level` in `cell` took `ms` (drawn and finished) and drew `triangles` (negative:
+  // not known, and the level's cost model learns nothing).
+  void record_moving(std::uint32_t cell, MovingLevel level, double ms, double triangles = -1.0);
   // One accumulation sample took `ms`.
   void record_sample(double ms);
   // The best level whose estimate in this cell fits the budget with 10 % headroom. An untried level is tried
@@ -33,8 +41,19 @@ class FrameGovernor {
   // estimate spoilt by one slow frame (a busy CPU) does not hold the cell down for good. A cell with no
   // measurement yet starts at the level of the cell chosen for last (the one just left, of similar cost),
   // not at the top, so walking into a new cell does not cost a slow frame.
-  [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell);
+  //
+  // With `triangles` (what each level would draw in this very frame, from its draw lists), a level is
+  // judged by its cost model instead: a line of ms against triangles fitted over every cell's frames at that
+  // level (Funkhouser & Sequin's predictive governor), once it has kModelMinFrames frames. A view that turns
+  // towards a furnished room is then judged by what it will draw, not by the cell's past frames.
+  [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell, std::span<const double> triangles = {});
   static constexpr int kProbeInterval = 120;
+  static constexpr double kModelMinFrames = 8.0;
+  // The model's prediction in ms, or a negative number while it has too few frames. The governor judges by
+  // the prediction plus kModelSpread times the spread of the model's past misses: it holds a p99, not a
+  // mean, and a frame's fill and the shared CPU vary around the line.
+  [[nodiscard]] double predict(MovingLevel level, double triangles) const;
+  static constexpr double kModelSpread = 2.0;
   // While still: how many accumulation samples fit in one frame (at least 1).
   [[nodiscard]] int samples_per_frame() const;
   // Estimate in ms, or a negative number when never measured.
@@ -45,9 +64,15 @@ class FrameGovernor {
   std::unordered_map<std::uint32_t, std::array<double, kMovingLevels>>
       moving_;  // per cell, per level; < 0 unknown
   double sample_ms_ = -1.0;
+  // Per level: decayed sums for the least-squares line ms = a + b * triangles.
+  struct LineFit {
+    double n = 0.0, t = 0.0, m = 0.0, tt = 0.0, tm = 0.0;
+    double miss_squared = 0.0;  // running mean of (measured - predicted)^2
+  };
+  std::array<LineFit, kMovingLevels> models_{};
   std::unordered_map<std::uint32_t, int> choices_;  // per cell, since its last probe
   std::optional<std::uint32_t> last_cell_;          // of the last choice
-  [[nodiscard]] MovingLevel settled(std::uint32_t cell) const;
+  [[nodiscard]] MovingLevel settled(std::uint32_t cell, std::span<const double> triangles) const;
 };
 
 }  // namespace walk::render

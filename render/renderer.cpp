@@ -115,6 +115,37 @@ struct Renderer::Impl {
     return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, units_for(cell), frustum, lod);
   }
 
+  // The eye's cell decides what is drawn; without cells (or outside them all) everything is.
+  [[nodiscard]] std::uint32_t cell_of(const View& view) const {
+    if (bundle.cells().empty()) return FrameStats::kNoCell;
+    const double eye[3] = {view.eye.x, view.eye.y, view.eye.z};
+    const std::uint32_t cell = bundle.locate_cell(eye);
+    if (cell >= bundle.cells().size()) return FrameStats::kNoCell;
+    // Off the walk (only the outside reaches it): no PVS there, everything is drawn.
+    return bundle.cells()[cell].flags & model::kCellOutside ? FrameStats::kNoCell : cell;
+  }
+  // The compiler leaves out of each cell's PVS the polygons turned away from all of it, which only a
+  // renderer culling back faces may skip: with culling off, every polygon is drawn.
+  [[nodiscard]] std::uint32_t list_cell(std::uint32_t cell) const {
+    return pvs_culling && culling ? cell : FrameStats::kNoCell;
+  }
+  // What each moving level would draw from `view`: the triangles of its draw list, for the governor.
+  std::array<double, kMovingLevels> level_triangles(const View& view, int width, int height) {
+    const std::uint32_t cell = list_cell(cell_of(view));
+    const Frustum frustum(view_projection(view, double(width) / double(height)));
+    const Frustum* f = frustum_culling ? &frustum : nullptr;
+    const float pixels_per_radian = float(double(height) / glm::radians(view.fov_y_degrees));
+    const bool coarse = !layout.coarse.empty();
+    std::array<double, kMovingLevels> out{};
+    for (int l = 0; l < kMovingLevels; ++l) {
+      const float pixels = moving_error_pixels(MovingLevel(l));
+      const LodChoice lod{glm::vec3(view.eye), pixels_per_radian, pixels};
+      out[std::size_t(l)] =
+          list_for(cell, coarse && MovingLevel(l) != MovingLevel::Patches, f, pixels > 0.0f ? &lod : nullptr)
+              .triangles;
+    }
+    return out;
+  }
   void draw_scene(const View& view, int width, int height, const DrawOptions& options);
   void present(int width, int height) const;
   void choose_diagonals();
@@ -400,19 +431,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   Framebuffer& target = reduced ? r.reduced_framebuffer : r.framebuffer;
   target.ensure_size(width, height);
 
-  // The eye's cell decides what is drawn; without cells (or outside them all) everything is.
-  std::uint32_t cell = FrameStats::kNoCell;
-  if (!r.bundle.cells().empty()) {
-    const double eye[3] = {view.eye.x, view.eye.y, view.eye.z};
-    cell = r.bundle.locate_cell(eye);
-    if (cell >= r.bundle.cells().size()) cell = FrameStats::kNoCell;
-    // Off the walk (only the outside reaches it): no PVS there, everything is drawn.
-    else if (r.bundle.cells()[cell].flags & model::kCellOutside)
-      cell = FrameStats::kNoCell;
-  }
-  // The compiler leaves out of each cell's PVS the polygons turned away from all of it, which only a
-  // renderer culling back faces may skip: with culling off, every polygon is drawn.
-  const std::uint32_t list_cell = r.pvs_culling && r.culling ? cell : FrameStats::kNoCell;
+  const std::uint32_t cell = r.cell_of(view), list_cell = r.list_cell(cell);
   // Flat polygon light needs no diced vertices: the coarse form draws the same surfaces in far fewer
   // triangles.
   const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.layout.coarse.empty();
@@ -664,13 +683,10 @@ bool Renderer::refine(const View& view, int width, int height) {
   const bool moved = r.restart || !r.shown_view || !same_view(*r.shown_view, view) ||
                      width != r.shown_width || height != r.shown_height;
   const bool relit = r.shown_levels != r.levels;
-  const auto cell_of = [&] {
-    if (r.bundle.cells().empty()) return FrameStats::kNoCell;
-    const double eye[3] = {view.eye.x, view.eye.y, view.eye.z};
-    return r.bundle.locate_cell(eye);
-  };
   if (moved) {
-    r.moving_level = r.pinned_level.value_or(r.governor.choose_moving(cell_of()));
+    const auto cell = r.bundle.cells().empty() ? FrameStats::kNoCell : r.cell_of(view);
+    r.moving_level =
+        r.pinned_level.value_or(r.governor.choose_moving(cell, r.level_triangles(view, width, height)));
     r.schedule.view_changed(r.moving_level == MovingLevel::Patches ? 1.0f : 0.0f);
   } else if (relit) {
     r.schedule.light_changed();
@@ -690,17 +706,15 @@ bool Renderer::refine(const View& view, int width, int height) {
   if (step.stage != RefineStage::Accumulating) {
     const bool moving = step.stage == RefineStage::Moving;
     const float resolution = moving && r.moving_level == MovingLevel::Reduced ? 0.5f : 1.0f;
-    const float lod_pixels = !moving                                     ? 0.0f
-                             : r.moving_level == MovingLevel::Reduced    ? kReducedErrorPixels
-                             : r.moving_level == MovingLevel::Simplified ? kSimplifiedErrorPixels
-                                                                         : 0.0f;
+    const float lod_pixels = moving ? moving_error_pixels(r.moving_level) : 0.0f;
     r.draw_scene(view, width, height,
                  DrawOptions{step.patch_weight, 0.0f, 0.0f, resolution, step.diagonals, lod_pixels});
     r.stats.samples = 1;
     if (moving) {
       r.stats.moving_level = r.moving_level;
       glFinish();
-      r.governor.record_moving(r.stats.cell, r.moving_level, milliseconds_since(start));
+      r.governor.record_moving(r.stats.cell, r.moving_level, milliseconds_since(start),
+                               double(r.stats.triangles_drawn));
     }
   } else {
     if (!r.accumulator) r.accumulator.emplace();

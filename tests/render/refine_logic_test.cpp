@@ -146,6 +146,37 @@ TEST(FrameGovernor, ProbesTheNextLevelUpNowAndThen) {
   EXPECT_EQ(governor.choose_moving(6), MovingLevel::Simplified);
 }
 
+TEST(FrameGovernor, PredictsALevelsCostFromTheTrianglesItWillDraw) {
+  FrameGovernor governor(60.0);
+  EXPECT_LT(governor.predict(MovingLevel::Patches, 1000.0), 0.0) << "no frames yet";
+  // Patches cost 1 ms + 1 ms per thousand triangles, measured in cell 1 only.
+  for (int i = 0; i < 20; ++i) {
+    const double t = 2000.0 + 500.0 * (i % 5);
+    governor.record_moving(1, MovingLevel::Patches, 1.0 + t / 1000.0, t);
+  }
+  EXPECT_NEAR(governor.predict(MovingLevel::Patches, 10000.0), 11.0, 1e-6);
+  EXPECT_NEAR(governor.predict(MovingLevel::Patches, 30000.0), 31.0, 1e-6);
+  EXPECT_LT(governor.predict(MovingLevel::Coarse, 1000.0), 0.0) << "each level has a model of its own";
+  // Cell 1's patch frames were cheap, so a new cell would inherit Patches; judged by what this view draws
+  // (30,000 patch triangles), Patches is over the budget and the next level, never tried, is the choice.
+  const std::array<double, kMovingLevels> heavy{500.0, 1000.0, 4000.0, 30000.0};
+  EXPECT_EQ(governor.choose_moving(2, heavy), MovingLevel::Coarse);
+  const std::array<double, kMovingLevels> light{500.0, 1000.0, 4000.0, 9000.0};
+  EXPECT_EQ(governor.choose_moving(2, light), MovingLevel::Patches);
+}
+
+TEST(FrameGovernor, AModelThatMissesWidelyIsJudgedByItsSpreadToo) {
+  FrameGovernor steady(60.0), noisy(60.0);
+  for (int i = 0; i < 40; ++i) {
+    const double t = 10000.0 + 100.0 * (i % 3);
+    steady.record_moving(1, MovingLevel::Patches, 13.0, t);
+    noisy.record_moving(1, MovingLevel::Patches, i % 2 ? 9.0 : 17.0, t);  // the same mean, +-4 ms
+  }
+  const std::array<double, kMovingLevels> view{500.0, 1000.0, 4000.0, 10100.0};
+  EXPECT_EQ(steady.choose_moving(2, view), MovingLevel::Patches) << "13 ms fits 90 % of 16.7 ms";
+  EXPECT_NE(noisy.choose_moving(2, view), MovingLevel::Patches) << "13 + 2 x 4 ms does not";
+}
+
 TEST(FrameGovernor, SamplesPerFrameFollowTheSampleCost) {
   FrameGovernor governor(60.0);
   EXPECT_EQ(governor.samples_per_frame(), 1);

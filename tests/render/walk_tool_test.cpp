@@ -99,7 +99,8 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
       0)
       << output;
   for (const char* row : {"bench_render,walk,unculled,12,", "walk,culled,12,", "walk,speedup,",
-                          "governed,moving,12,", "level,reduced-half-res,", "level,patches,",
+                          "governed,moving,12,", "level,reduced-half-res,", "level,simplified,",
+                          "level,coarse,", "level,patches,", "level,empty-frame,", "level,coarsest-lod,",
                           "level,diagonals+subdivision,", "aa,1-samples,", "aa,64-samples,"})
     EXPECT_NE(output.find(row), std::string::npos) << "missing '" << row << "' in:\n" << output;
   // The culled walk draws fewer polygons than the unculled one (each room leaves out 3 of the other's).
@@ -113,6 +114,14 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
     return std::stod(field);
   };
   EXPECT_LT(polygons("walk,culled,"), polygons("walk,unculled,"));
+  // Full detail against itself: no error; the half-resolution level differs somewhere.
+  const auto patches = output.find("level,patches,");
+  ASSERT_NE(patches, std::string::npos);
+  EXPECT_NE(output.substr(patches, output.find('\n', patches) - patches).find(",0.00000,0.00,"),
+            std::string::npos);
+  const auto reduced = output.find("level,reduced-half-res,");
+  EXPECT_EQ(output.substr(reduced, output.find('\n', reduced) - reduced).find(",0.00000,0.00,"),
+            std::string::npos);
 }
 
 }  // namespace
