@@ -1,4 +1,4 @@
-// walk bench render scene.toml|x.walk: frame times at 1280x720 along a scripted walk, culled and unculled,
+// walk bench render scene.toml|x.walk...: frame times at 1280x720 along a scripted walk, culled and unculled,
 // with the governor holding the target rate while moving, and what each refinement level and each
 // anti-aliasing sample count costs. One CSV table on stdout.
 #include <glad/gl.h>
@@ -20,6 +20,7 @@
 #include "render/backend/backend.hpp"
 #include "render/renderer.hpp"
 #include "tools/commands.hpp"
+#include "tools/gnuplot.hpp"
 
 namespace walk::tools {
 namespace {
@@ -27,7 +28,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Options {
-  std::string input;
+  std::vector<std::string> inputs;
+  std::string plot;
   std::string size = "1280x720";
   std::string backend = "auto";
   int frames = 240;
@@ -149,22 +151,27 @@ void print(const std::string& scene, const Row& r) {
   std::printf("%s\n", r.note.c_str());
 }
 
-int run(const Options& o) {
-  int width = 0, height = 0;
-  char x = 0;
-  std::istringstream size(o.size);
-  if (!(size >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0)
-    throw Error("--size '" + o.size + "' is not WIDTHxHEIGHT");
-  std::string path = o.input;
+// One model's place on the size plot.
+struct Summary {
+  std::string scene;
+  std::size_t triangles = 0;
+  double walk_p50 = 0.0, walk_p99 = 0.0;  // culled + frustum, patches
+  double governed_p50 = 0.0, governed_p99 = 0.0;
+};
+
+Summary run_one(const Options& o, const std::string& input, int width, int height, bool header) {
+  Summary summary;
+  std::string path = input;
   std::filesystem::path temp;
-  if (std::filesystem::path(o.input).extension() == ".toml") {
+  if (std::filesystem::path(input).extension() == ".toml") {
     temp = std::filesystem::temp_directory_path() / ("walk_bench_render_" + std::to_string(::getpid()));
     std::filesystem::create_directories(temp);
     path = (temp / "scene.walk").string();
-    std::cerr << "compiling " << o.input << "\n";
-    compiler::compile_to_file(o.input, path, true);
+    std::cerr << "compiling " << input << "\n";
+    compiler::compile_to_file(input, path, true);
   }
-  const std::string scene = std::filesystem::path(o.input).stem().string();
+  const std::string scene = std::filesystem::path(input).stem().string();
+  summary.scene = scene;
   {
     auto bundle = model::Bundle::open(path);
     render::BackendOptions bo;
@@ -177,10 +184,12 @@ int run(const Options& o) {
     const auto walk = scripted_walk(*bundle, o.frames);
     std::cerr << "backend " << backend->name() << ", " << bundle->polygons().size() << " polygons, "
               << bundle->cells().size() << " cells, " << bundle->circuits().size() << " circuits\n";
-    std::printf(
-        "scene,section,variant,frames,p50_ms,p99_ms,mean_polygons,mean_triangles,mae_linear,pixels_over_2_"
-        "pct,"
-        "note\n");
+    summary.triangles = bundle->indices().size() / 3;
+    if (header)
+      std::printf(
+          "scene,section,variant,frames,p50_ms,p99_ms,mean_polygons,mean_triangles,mae_linear,pixels_over_2_"
+          "pct,"
+          "note\n");
 
     // Culled and unculled along the same walk; each frame drawn and finished.
     double p50[3] = {};
@@ -201,6 +210,7 @@ int run(const Options& o) {
         triangles += renderer.last_stats().triangles_drawn;
       }
       p50[culled] = percentile(times, 0.5);
+      if (culled == 2) summary.walk_p50 = p50[culled], summary.walk_p99 = percentile(times, 0.99);
       print(scene, {"walk",
                     names[culled],
                     times.size(),
@@ -251,6 +261,8 @@ int run(const Options& o) {
       }
     }
     const double budget = 1000.0 / o.target_hz;
+    summary.governed_p50 = percentile(times, 0.5);
+    summary.governed_p99 = percentile(times, 0.99);
     print(scene,
           {"governed",
            "moving",
@@ -372,6 +384,36 @@ int run(const Options& o) {
     }
   }
   if (!temp.empty()) std::filesystem::remove_all(temp);
+  return summary;
+}
+
+int run(const Options& o) {
+  int width = 0, height = 0;
+  char x = 0;
+  std::istringstream size(o.size);
+  if (!(size >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0)
+    throw Error("--size '" + o.size + "' is not WIDTHxHEIGHT");
+  std::ostringstream csv;
+  csv << "scene,triangles,walk_p50_ms,walk_p99_ms,governed_p50_ms,governed_p99_ms\n";
+  for (std::size_t i = 0; i < o.inputs.size(); ++i) {
+    const Summary r = run_one(o, o.inputs[i], width, height, i == 0);
+    csv << r.scene << ',' << r.triangles << ',' << r.walk_p50 << ',' << r.walk_p99 << ',' << r.governed_p50
+        << ',' << r.governed_p99 << '\n';
+  }
+  if (!o.plot.empty()) {
+    std::ostringstream commands;
+    commands << "set logscale x\nset key top left\nset xlabel 'triangles in the model'\n"
+             << "set ylabel 'frame ms (1280x720 unless --size)'\nset yrange [0:*]\n"
+             << "set title 'Frame time against model size (walk bench render)'\n"
+             << "plot '" << plot_data_path(o.plot)
+             << "' every ::1 using 2:5 with linespoints title 'governed p50', "
+             << "'' every ::1 using 2:6 with linespoints title 'governed p99', "
+             << "'' every ::1 using 2:3 with linespoints title 'patches, PVS + frustum p50', "
+             << "'' every ::1 using 2:4 with linespoints title 'patches, PVS + frustum p99', "
+             << "'' every ::1 using 2:6:1 with labels offset 1,1 notitle, " << 1000.0 / o.target_hz
+             << " title 'frame budget' dashtype 2\n";
+    plot_with_gnuplot(o.plot, csv.str(), commands.str());
+  }
   return 0;
 }
 
@@ -381,7 +423,14 @@ void add_bench_render_command(CLI::App& bench, int& exit_code) {
   auto o = std::make_shared<Options>();
   auto* cmd =
       bench.add_subcommand("render", "Frame times culled/unculled, governor, refinement and AA costs (CSV)");
-  cmd->add_option("input", o->input, "Scene config (.toml, compiled first) or bundle (.walk)")->required();
+  cmd->add_option(
+         "inputs", o->inputs,
+         "Scene configs (.toml, compiled first) or bundles (.walk), one table each; several (say the "
+         "generated S, M, L) for the --plot against model size")
+      ->required();
+  cmd->add_option(
+      "--plot", o->plot,
+      "Also write this PNG (and its CSV beside it): frame times against model size, with gnuplot");
   cmd->add_option("--size", o->size, "WIDTHxHEIGHT");
   cmd->add_option("--backend", o->backend, "auto, osmesa, egl or glfw");
   cmd->add_option("--frames", o->frames, "Frames along the scripted walk")->check(CLI::Range(2, 100000));

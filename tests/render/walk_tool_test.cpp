@@ -114,6 +114,20 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
     return std::stod(field);
   };
   EXPECT_LT(polygons("walk,culled,"), polygons("walk,unculled,"));
+  // Two bundles and --plot: one table each (one header) and a size summary with a row per bundle.
+  const std::string plot = bundle->path() + ".size.png";
+  std::string twice;
+  ASSERT_EQ(run(kWalk + " bench render " + bundle->path() + " " + bundle->path() +
+                    " --backend osmesa --size 160x120 --frames 12 --plot " + plot,
+                twice),
+            0)
+      << twice;
+  EXPECT_EQ(twice.find("scene,section"), twice.rfind("scene,section")) << "one header";
+  std::ifstream summary(plot + ".csv");
+  std::string line;
+  int rows = 0;
+  while (std::getline(summary, line)) rows += line.rfind("bench_render,", 0) == 0;
+  EXPECT_EQ(rows, 2);
   // Full detail against itself: no error; the half-resolution level differs somewhere.
   const auto patches = output.find("level,patches,");
   ASSERT_NE(patches, std::string::npos);
