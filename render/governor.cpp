@@ -90,16 +90,7 @@ MovingLevel FrameGovernor::settled(std::uint32_t cell, std::span<const double> t
       return MovingLevel(l);
     }
   }
-  // Nothing fits: the cheapest level judged, which is not always the half-resolution one (on llvmpipe its
-  // scaling blit costs more than a shell-only level like a Quake map's saves: E1M1 10.7 ms against 7.5).
-  MovingLevel cheapest = MovingLevel::Reduced;
-  double best = judged(0);
-  for (int l = 1; l < kMovingLevels && best >= 0.0; ++l) {
-    const double e = judged(l);
-    if (e < 0.0) break;  // an untried level above is tried only through the loop above
-    if (e < best) best = e, cheapest = MovingLevel(l);
-  }
-  return cheapest;
+  return MovingLevel::Reduced;
 }
 
 int FrameGovernor::samples_per_frame() const {
