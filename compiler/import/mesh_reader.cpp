@@ -3,10 +3,12 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <filesystem>
 #include <glm/geometric.hpp>
 #include <map>
 #include <numbers>
@@ -87,6 +89,22 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
     model.materials.push_back({name.length ? name.C_Str() : "material" + std::to_string(i), rho});
     emission[i] = {std::max(0.f, ke.r), std::max(0.f, ke.g), std::max(0.f, ke.b)};
     ++stats.materials;
+    // Albedo maps are not drawn yet (the material's colour is): say so, and name one that is missing, so a
+    // user does not take a flat-coloured model for a broken import.
+    aiString texture;
+    if (m->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS && texture.length > 0 &&
+        texture.C_Str()[0] != '*') {  // '*N': embedded in the file, never missing
+      ++stats.textures_named;
+      const auto resolved = std::filesystem::path(path).parent_path() / texture.C_Str();
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(resolved, ec)) {
+        ++stats.textures_missing;
+        spdlog::warn(
+            "{}: material '{}' names the texture '{}', which is not at {}; its colour ({:.3f} {:.3f} "
+            "{:.3f}) is used (put the texture beside the model to silence this)",
+            path, model.materials.back().name, texture.C_Str(), resolved.string(), rho.r, rho.g, rho.b);
+      }
+    }
   }
   // Meshes are placed by walking the node tree (assimp's PreTransformVertices would do it, but it joins
   // every mesh of one material into one and so loses the groups, which name the rooms).

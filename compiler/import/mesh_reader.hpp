@@ -26,6 +26,10 @@ struct MeshStats {
   std::size_t emissive_faces = 0;
   std::size_t luminaires = 0;
   std::size_t vertices = 0;
+  // Albedo maps the materials name (map_Kd, a glTF base colour texture): not drawn yet, each material's own
+  // colour is used; a missing one is also warned about by name.
+  std::size_t textures_named = 0;
+  std::size_t textures_missing = 0;
 };
 
 // Throws walk::Error naming the file (assimp reports no line numbers) when assimp cannot read it or it has
