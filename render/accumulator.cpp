@@ -44,16 +44,6 @@ void main() {
 }
 )glsl";
 
-// The sRGB transfer function's inverse at each 8-bit code.
-std::array<float, 256> srgb_decode_table() {
-  std::array<float, 256> table{};
-  for (int i = 0; i < 256; ++i) {
-    const double c = i / 255.0;
-    table[i] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-  }
-  return table;
-}
-
 }  // namespace
 
 Accumulator::Accumulator()

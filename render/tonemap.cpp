@@ -1,5 +1,6 @@
 #include "render/tonemap.hpp"
 
+#include <cmath>
 #include <string>
 
 namespace walk::render {
@@ -26,5 +27,14 @@ out vec4 o_colour;
 )glsl") + kSrgbEncodeGlsl + R"glsl(
 void main() { o_colour = vec4(srgb_encode(v_radiosity * u_inv_exposure), u_opacity); }
 )glsl";
+
+std::array<float, 256> srgb_decode_table() {
+  std::array<float, 256> table{};
+  for (int i = 0; i < 256; ++i) {
+    const double c = i / 255.0;
+    table[std::size_t(i)] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+  }
+  return table;
+}
 
 }  // namespace walk::render

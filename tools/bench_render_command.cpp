@@ -19,6 +19,7 @@
 #include "model/error.hpp"
 #include "render/backend/backend.hpp"
 #include "render/renderer.hpp"
+#include "render/tonemap.hpp"
 #include "tools/commands.hpp"
 #include "tools/gnuplot.hpp"
 
@@ -103,19 +104,8 @@ struct ImageError {
   double over_2_percent = 0.0;
 };
 
-double srgb_to_linear(std::uint8_t byte) {
-  static const auto table = [] {
-    std::array<double, 256> t{};
-    for (int i = 0; i < 256; ++i) {
-      const double c = i / 255.0;
-      t[std::size_t(i)] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-    }
-    return t;
-  }();
-  return table[byte];
-}
-
 ImageError image_error(const render::Image& image, const render::Image& reference) {
+  static const auto linear = render::srgb_decode_table();
   ImageError e;
   const std::size_t pixels = std::size_t(image.width) * image.height;
   std::size_t over = 0;
@@ -123,7 +113,7 @@ ImageError image_error(const render::Image& image, const render::Image& referenc
     bool off = false;
     for (int k = 0; k < 3; ++k) {
       const std::uint8_t a = image.rgba[i * 4 + k], b = reference.rgba[i * 4 + k];
-      e.mae_linear += std::abs(srgb_to_linear(a) - srgb_to_linear(b));
+      e.mae_linear += std::abs(double(linear[a]) - double(linear[b]));
       off = off || std::abs(int(a) - int(b)) > 2;
     }
     over += off;
