@@ -78,8 +78,8 @@ void append(DrawBatch& batch, IndexRange r, std::uint64_t& end) {
   end = std::uint64_t(r.first) + r.count;
 }
 
-// Appends the levels of detail after `form`'s glass, level by level; `units` are the bundle's clusters in
-// layout order (a unit past the clusters has no levels).
+// Appends the levels of detail after `form`'s glass, level by level. `cluster_of_unit` gives each unit's
+// bundle cluster (a value past the clusters: no levels).
 void lay_out_levels(const LayoutInput& in, const std::vector<std::uint32_t>& cluster_of_unit,
                     LaidOutForm& form) {
   const std::size_t units = form.opaque.size();

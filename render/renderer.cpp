@@ -129,19 +129,26 @@ struct Renderer::Impl {
   [[nodiscard]] std::uint32_t list_cell(std::uint32_t cell) const {
     return pvs_culling && culling ? cell : FrameStats::kNoCell;
   }
+  // A frame's list from the list cell `cell`: its PVS clusters, less those outside the frustum of
+  // `view_projection_matrix` when frustum culling is on, each at its coarsest level within `lod_pixels` of
+  // the full-size frame (flat light only: a level's vertices carry their own polygon's light).
+  DrawList frame_list(std::uint32_t cell, const View& view, const glm::mat4& view_projection_matrix,
+                      int full_height, bool coarse, float lod_pixels) {
+    const Frustum frustum(view_projection_matrix);
+    const LodChoice lod{glm::vec3(view.eye), float(double(full_height) / glm::radians(view.fov_y_degrees)),
+                        coarse ? lod_pixels : 0.0f};
+    return list_for(cell, coarse, frustum_culling ? &frustum : nullptr,
+                    lod.max_pixels > 0.0f ? &lod : nullptr);
+  }
   // What each moving level would draw from `view`: the triangles of its draw list, for the governor.
   std::array<double, kMovingLevels> level_triangles(const View& view, int width, int height) {
     const std::uint32_t cell = list_cell(cell_of(view));
-    const Frustum frustum(view_projection(view, double(width) / double(height)));
-    const Frustum* f = frustum_culling ? &frustum : nullptr;
-    const float pixels_per_radian = float(double(height) / glm::radians(view.fov_y_degrees));
-    const bool coarse = !layout.coarse.empty();
+    const glm::mat4 view_projection_matrix = view_projection(view, double(width) / double(height));
     std::array<double, kMovingLevels> out{};
     for (int l = 0; l < kMovingLevels; ++l) {
-      const float pixels = moving_error_pixels(MovingLevel(l));
-      const LodChoice lod{glm::vec3(view.eye), pixels_per_radian, pixels};
+      const bool coarse = !layout.coarse.empty() && MovingLevel(l) != MovingLevel::Patches;
       out[std::size_t(l)] =
-          list_for(cell, coarse && MovingLevel(l) != MovingLevel::Patches, f, pixels > 0.0f ? &lod : nullptr)
+          frame_list(cell, view, view_projection_matrix, height, coarse, moving_error_pixels(MovingLevel(l)))
               .triangles;
     }
     return out;
@@ -435,13 +442,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   // Flat polygon light needs no diced vertices: the coarse form draws the same surfaces in far fewer
   // triangles.
   const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.layout.coarse.empty();
-  // The cell's PVS clusters, less those wholly outside this frame's frustum.
-  const Frustum frustum(view_projection_matrix);
-  // Levels of detail only with flat light: a level's vertices carry their own polygon's light.
-  const double pixels_per_radian = double(full_height) / glm::radians(view.fov_y_degrees);
-  const LodChoice lod{glm::vec3(view.eye), float(pixels_per_radian), coarse ? options.lod_pixels : 0.0f};
-  r.list = r.list_for(list_cell, coarse, r.frustum_culling ? &frustum : nullptr,
-                      lod.max_pixels > 0.0f ? &lod : nullptr);
+  r.list = r.frame_list(list_cell, view, view_projection_matrix, full_height, coarse, options.lod_pixels);
   const DrawList& list = r.list;
 
   glBindFramebuffer(GL_FRAMEBUFFER, target.id());
@@ -684,9 +685,12 @@ bool Renderer::refine(const View& view, int width, int height) {
                      width != r.shown_width || height != r.shown_height;
   const bool relit = r.shown_levels != r.levels;
   if (moved) {
-    const auto cell = r.bundle.cells().empty() ? FrameStats::kNoCell : r.cell_of(view);
-    r.moving_level =
-        r.pinned_level.value_or(r.governor.choose_moving(cell, r.level_triangles(view, width, height)));
+    // A pinned level needs no prediction: the governor is asked only to keep its per-cell state.
+    std::array<double, kMovingLevels> triangles{};
+    if (!r.pinned_level) triangles = r.level_triangles(view, width, height);
+    const std::uint32_t cell = r.cell_of(view);
+    r.moving_level = r.pinned_level.value_or(r.governor.choose_moving(
+        cell, r.pinned_level ? std::span<const double>() : std::span<const double>(triangles)));
     r.schedule.view_changed(r.moving_level == MovingLevel::Patches ? 1.0f : 0.0f);
   } else if (relit) {
     r.schedule.light_changed();
