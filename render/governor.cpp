@@ -29,12 +29,7 @@ void FrameGovernor::record_moving(std::uint32_t cell, MovingLevel level, double 
       const double miss = ms - predicted;
       f.miss_squared = kModelDecay * f.miss_squared + (1.0 - kModelDecay) * miss * miss;
     }
-    f = {kModelDecay * f.n + 1.0,
-         kModelDecay * f.t + triangles,
-         kModelDecay * f.m + ms,
-         kModelDecay * f.tt + triangles * triangles,
-         kModelDecay * f.tm + triangles * ms,
-         f.miss_squared};
+    f.add(triangles, ms, kModelDecay);
   }
   std::array<double, kMovingLevels> unknown;
   unknown.fill(-1.0);
@@ -50,6 +45,14 @@ void FrameGovernor::record_sample(double ms) {
 double FrameGovernor::estimate(std::uint32_t cell, MovingLevel level) const {
   const auto it = moving_.find(cell);
   return it == moving_.end() ? -1.0 : it->second[std::size_t(level)];
+}
+
+void FrameGovernor::LineFit::add(double triangles, double ms, double decay) {
+  n = decay * n + 1.0;
+  t = decay * t + triangles;
+  m = decay * m + ms;
+  tt = decay * tt + triangles * triangles;
+  tm = decay * tm + triangles * ms;
 }
 
 double FrameGovernor::predict(MovingLevel level, double triangles) const {

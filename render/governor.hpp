@@ -68,6 +68,7 @@ class FrameGovernor {
   struct LineFit {
     double n = 0.0, t = 0.0, m = 0.0, tt = 0.0, tm = 0.0;
     double miss_squared = 0.0;  // running mean of (measured - predicted)^2
+    void add(double triangles, double ms, double decay);
   };
   std::array<LineFit, kMovingLevels> models_{};
   std::unordered_map<std::uint32_t, int> choices_;  // per cell, since its last probe
