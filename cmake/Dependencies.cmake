@@ -7,6 +7,7 @@ find_package(meshoptimizer REQUIRED)  # cluster levels of detail (compiler/lod);
 find_package(glm REQUIRED)
 find_package(ZLIB REQUIRED)
 find_package(PNG REQUIRED)
+find_package(JPEG REQUIRED)  # albedo maps (libjpeg-turbo)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)
 pkg_check_modules(TOMLPP REQUIRED IMPORTED_TARGET tomlplusplus)

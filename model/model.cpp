@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 namespace walk::model {
 
@@ -36,6 +37,11 @@ std::uint32_t Model::group_index(const std::string& name) {
   if (it != groups.end()) return static_cast<std::uint32_t>(it - groups.begin());
   groups.push_back(name);
   return static_cast<std::uint32_t>(groups.size() - 1);
+}
+
+void TextureMap::translate(const Vec3& shift) {
+  u_offset -= glm::dot(u_gradient, shift);
+  v_offset -= glm::dot(v_gradient, shift);
 }
 
 void Bounds::add(const Vec3& p) {

@@ -4,6 +4,7 @@
 // authored far from the world origin keep full precision; rendering converts local coordinates to float.
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,9 +20,35 @@ enum class Role : std::uint8_t { Opaque = 0, Glass = 1, Opening = 2, Luminaire =
 [[nodiscard]] const char* role_name(Role role);
 [[nodiscard]] bool parse_role(const std::string& text, Role& out);
 
+// An albedo map: 8-bit sRGB RGBA texels, rows from the bottom (v = 0) up, as GL samples them.
+struct Texture {
+  std::string name;  // as the model file names it
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<std::uint8_t> rgba;  // width * height * 4
+  Rgb mean{1.0};                   // mean texel in linear light: what the solver multiplies into reflectance
+};
+
+inline constexpr std::uint32_t kNoTexture = UINT32_MAX;
+
 struct Material {
   std::string name;
-  Rgb reflectance{0.5, 0.5, 0.5};  // diffuse reflectance per channel, 0..1
+  // Diffuse reflectance per channel, 0..1; with an albedo map, the material's colour times the map's mean,
+  // so the light solve sees the surface's average reflectance.
+  Rgb reflectance{0.5, 0.5, 0.5};
+  std::uint32_t texture = kNoTexture;  // index into Model::textures
+};
+
+// Texture coordinates over a planar polygon, an affine function of position: u(p) = dot(u_gradient, p) +
+// u_offset, likewise v. Being a function of position, it survives every cut, split and re-dicing of the
+// polygon, and a vertex made anywhere on it gets its coordinates without interpolation bookkeeping.
+struct TextureMap {
+  Vec3 u_gradient{0.0};
+  double u_offset = 0.0;
+  Vec3 v_gradient{0.0};
+  double v_offset = 0.0;
+  // Moves the map with its polygon when the polygon moves by `shift`.
+  void translate(const Vec3& shift);
 };
 
 // A planar polygon, counter-clockwise seen from the side its normal points to. `group` names the room/zone
@@ -35,6 +62,7 @@ struct Polygon {
   int color = 0;            // source colour number (DXF ACI), 0 when none
   std::string name;         // source name (EnergyPlus surface name), may be empty
   std::uint32_t source_line = 0;
+  std::optional<TextureMap> texture_map;  // where its material has an albedo map and the file gave UVs
 };
 
 // What shape a luminaire emits from: an area panel, or a point (Quake `light` entities) emitting in all
@@ -67,6 +95,7 @@ struct Model {
   Vec3 origin{0.0};  // world position of local (0,0,0), metres
   std::vector<Polygon> polygons;
   std::vector<Material> materials;
+  std::vector<Texture> textures;
   std::vector<std::string> groups;
   std::vector<Luminaire> luminaires;
   std::vector<Circuit> circuits;

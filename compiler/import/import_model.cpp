@@ -79,12 +79,12 @@ model::Model import_model(const SceneConfig& config, ImportReport* report) {
         s.sky_faces, s.liquid_faces, s.lights, s.spot_lights);
   } else {
     MeshStats s;
-    m = read_mesh(config.model_file, {config.metres_per_unit, config.y_up, 1.0}, &s);
+    m = read_mesh(config.model_file, {config.metres_per_unit, config.y_up, 1.0, config.texture_dirs}, &s);
     r.detail = fmt::format(
         "meshes {} vertices {} faces {} (triangles {}) points/lines skipped {} materials {} "
-        "emissive faces {} -> luminaires {} textures named {} (not drawn: material colours used), missing {}",
+        "emissive faces {} -> luminaires {} textures named {} loaded {} missing {} textured faces {}",
         s.meshes, s.vertices, s.faces, s.triangles, s.skipped_primitives, s.materials, s.emissive_faces,
-        s.luminaires, s.textures_named, s.textures_missing);
+        s.luminaires, s.textures_named, s.textures_loaded, s.textures_missing, s.faces_textured);
   }
   // Imported materials go after the config's (index 0, "default", is the config's default).
   const auto first = static_cast<std::uint32_t>(config.materials.empty() ? 1 : config.materials.size());

@@ -12,7 +12,10 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <numbers>
+#include <optional>
 
+#include "compiler/import/texture_image.hpp"
+#include "compiler/import/uv_fit.hpp"
 #include "model/error.hpp"
 
 namespace walk::compiler {
@@ -59,6 +62,84 @@ model::Luminaire lamp_luminaire(const Lamp& lamp, double emission_scale) {
   return l;
 }
 
+// Where a texture named `name` is: beside the model (as named, then by its file name alone, since models
+// often carry the author's absolute or Windows paths), then in each configured folder the same two ways.
+std::optional<std::filesystem::path> find_texture(const std::string& name, const std::string& model_path,
+                                                  const std::vector<std::string>& folders) {
+  std::string slashed = name;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  const std::filesystem::path named(slashed);
+  std::vector<std::filesystem::path> places{std::filesystem::path(model_path).parent_path()};
+  for (const auto& f : folders) places.emplace_back(f);
+  std::error_code ec;
+  for (const auto& place : places)
+    for (const auto& candidate : {place / named, place / named.filename()})
+      if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
+  return std::nullopt;
+}
+
+// The material's albedo map (a diffuse or glTF base colour texture) as an index into model.textures, loaded
+// once per file; kNoTexture when it names none, or a missing or unreadable one (warned about by name: the
+// material's colour is used then).
+std::uint32_t albedo_map(const aiScene& scene, const aiMaterial& material, const std::string& path,
+                         const std::vector<std::string>& folders, model::Model& model, MeshStats& stats,
+                         std::map<std::string, std::uint32_t>& loaded) {
+  aiString name;
+  if (material.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS &&
+      material.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS)
+    return model::kNoTexture;
+  if (name.length == 0) return model::kNoTexture;
+  ++stats.textures_named;
+  const model::Material& m = model.materials.back();
+  const std::string named = name.C_Str();
+  const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str());
+  std::string key;
+  std::optional<std::filesystem::path> file;
+  if (embedded) {
+    key = "embedded " + named;
+  } else {
+    file = find_texture(named, path, folders);
+    if (!file) {
+      ++stats.textures_missing;
+      spdlog::warn(
+          "{}: material '{}' names the texture '{}', found neither beside the model nor in the scene's "
+          "texture folders ([model] textures); its colour ({:.3f} {:.3f} {:.3f}) is used",
+          path, m.name, named, m.reflectance.r, m.reflectance.g, m.reflectance.b);
+      return model::kNoTexture;
+    }
+    key = file->string();
+  }
+  if (const auto it = loaded.find(key); it != loaded.end()) return it->second;
+  model::Texture texture;
+  try {
+    if (!embedded) {
+      texture = load_texture(file->string());
+    } else if (embedded->mHeight == 0) {  // a whole compressed file (PNG, JPEG) of mWidth bytes
+      texture = decode_texture({reinterpret_cast<const std::uint8_t*>(embedded->pcData), embedded->mWidth},
+                               path + ": embedded texture " + named);
+    } else {  // raw BGRA texels
+      std::vector<std::uint8_t> rgba;
+      rgba.reserve(std::size_t(embedded->mWidth) * embedded->mHeight * 4);
+      for (std::size_t i = 0; i < std::size_t(embedded->mWidth) * embedded->mHeight; ++i) {
+        const aiTexel& t = embedded->pcData[i];
+        rgba.insert(rgba.end(), {t.r, t.g, t.b, t.a});
+      }
+      texture = texture_from_rgba(std::move(rgba), embedded->mWidth, embedded->mHeight);
+    }
+  } catch (const Error& e) {
+    ++stats.textures_missing;
+    spdlog::warn("{}: material '{}': {}; its colour is used", path, m.name, e.what());
+    loaded[key] = model::kNoTexture;
+    return model::kNoTexture;
+  }
+  texture.name = named;
+  ++stats.textures_loaded;
+  const auto index = static_cast<std::uint32_t>(model.textures.size());
+  model.textures.push_back(std::move(texture));
+  loaded[key] = index;
+  return index;
+}
+
 }  // namespace
 
 model::Model read_mesh(const std::string& path, const MeshOptions& options, MeshStats* stats_out) {
@@ -76,6 +157,7 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
   model.materials.push_back({"default", {0.5, 0.5, 0.5}});
   std::vector<std::uint32_t> material_index(scene->mNumMaterials, 0);
   std::vector<model::Rgb> emission(scene->mNumMaterials, model::Rgb(0.0));
+  std::map<std::string, std::uint32_t> textures;  // file (or embedded name) -> model.textures index
   for (unsigned i = 0; i < scene->mNumMaterials; ++i) {
     const aiMaterial* m = scene->mMaterials[i];
     aiString name;
@@ -89,21 +171,12 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
     model.materials.push_back({name.length ? name.C_Str() : "material" + std::to_string(i), rho});
     emission[i] = {std::max(0.f, ke.r), std::max(0.f, ke.g), std::max(0.f, ke.b)};
     ++stats.materials;
-    // Albedo maps are not drawn yet (the material's colour is): say so, and name one that is missing, so a
-    // user does not take a flat-coloured model for a broken import.
-    aiString texture;
-    if (m->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS && texture.length > 0 &&
-        texture.C_Str()[0] != '*') {  // '*N': embedded in the file, never missing
-      ++stats.textures_named;
-      const auto resolved = std::filesystem::path(path).parent_path() / texture.C_Str();
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(resolved, ec)) {
-        ++stats.textures_missing;
-        spdlog::warn(
-            "{}: material '{}' names the texture '{}', which is not at {}; its colour ({:.3f} {:.3f} "
-            "{:.3f}) is used (put the texture beside the model to silence this)",
-            path, model.materials.back().name, texture.C_Str(), resolved.string(), rho.r, rho.g, rho.b);
-      }
+    const std::uint32_t texture = albedo_map(*scene, *m, path, options.texture_dirs, model, stats, textures);
+    if (texture != model::kNoTexture) {
+      model.materials.back().texture = texture;
+      // Rounded to float like every colour assimp reads: a material given the map's mean as its colour
+      // solves to exactly the same light.
+      model.materials.back().reflectance = glm::dvec3(glm::vec3(rho * model.textures[texture].mean));
     }
   }
   // Meshes are placed by walking the node tree (assimp's PreTransformVertices would do it, but it joins
@@ -154,9 +227,18 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
         model::Polygon p;
         for (unsigned k = 0; k < f.mNumIndices; ++k)
           p.vertices.push_back(convert(mesh->mVertices[f.mIndices[k]]));
-        if (mirrored) std::reverse(p.vertices.begin(), p.vertices.end());
         p.group = g;
         p.material = mat < material_index.size() ? material_index[mat] : 0;
+        if (model.materials[p.material].texture != model::kNoTexture && mesh->HasTextureCoords(0)) {
+          std::vector<glm::dvec2> uvs;
+          for (unsigned k = 0; k < f.mNumIndices; ++k) {
+            const aiVector3D& t = mesh->mTextureCoords[0][f.mIndices[k]];
+            uvs.emplace_back(t.x, t.y);
+          }
+          p.texture_map = fit_texture_map(p.vertices, uvs);
+          stats.faces_textured += p.texture_map ? 1 : 0;
+        }
+        if (mirrored) std::reverse(p.vertices.begin(), p.vertices.end());
         p.name = model.materials[p.material].name;
         p.source_line = fi + 1;  // face number within its mesh: assimp keeps no line numbers
         if (emissive) {

@@ -49,7 +49,7 @@ constexpr const char* kFormats[] = {"dxf", "plan", "map", "obj", "gltf", "glb",
 void read_model(const TomlTable& root, SceneConfig& cfg) {
   const auto model = root.table("model");
   if (!model) root.fail("model", "missing [model] table with at least `file = \"building.dxf\"`");
-  model->only({"file", "format", "units", "scale", "up", "faces", "weld", "seal"});
+  model->only({"file", "format", "units", "scale", "up", "faces", "weld", "seal", "textures"});
   if (model->has("weld")) {
     cfg.weld_metres = positive(*model, "weld", 0.0);
     if (cfg.weld_metres > 0.01)
@@ -92,6 +92,20 @@ void read_model(const TomlTable& root, SceneConfig& cfg) {
   if (faces != "inward" && faces != "outward")
     model->fail("faces", "must be \"inward\" (faces look into their room) or \"outward\" (EnergyPlus zones)");
   cfg.faces_point_outward = faces == "outward";
+  // Folders searched for albedo maps after the model's own, relative to the config like `file`.
+  if (model->has("textures")) {
+    const auto folders = model->strings("textures");
+    if (!folders) model->fail("textures", "must be an array of folder names, e.g. [\"textures\"]");
+    for (const auto& f : *folders) {
+      fs::path d(f);
+      if (d.is_relative()) d = fs::path(cfg.path).parent_path() / d;
+      std::error_code ec;
+      if (!fs::is_directory(d, ec))
+        model->fail("textures", "'" + f + "' is not a folder (resolved to " + d.string() +
+                                    "); name folders that hold the model's texture images");
+      cfg.texture_dirs.push_back(d.lexically_normal().string());
+    }
+  }
 }
 
 void read_plan(const TomlTable& root, SceneConfig& cfg) {

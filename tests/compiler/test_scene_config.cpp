@@ -100,6 +100,19 @@ TEST_F(SceneConfigTest, ModelPathIsResolvedAgainstTheConfigFolder) {
   EXPECT_DOUBLE_EQ(c.metres_per_unit, 0.0254);
 }
 
+TEST_F(SceneConfigTest, TextureFoldersAreResolvedAndMustExist) {
+  const fs::path folder = fs::temp_directory_path() / ("walk_scene_maps_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  write("[model]\nfile = \"a.obj\"\ntextures = [\"" + folder.filename().string() + "\"]\n");
+  EXPECT_EQ(load_scene_config(path_).texture_dirs, std::vector<std::string>{folder.string()});
+  fs::remove(folder);
+  for (const std::string bad : {"[\"no_such_maps_folder\"]", "\"maps\"", "[1]"}) {
+    const std::string err = error_of("[model]\nfile = \"a.obj\"\ntextures = " + bad + "\n");
+    EXPECT_NE(err.find("textures"), std::string::npos) << bad << ": " << err;
+    EXPECT_NE(err.find(":3"), std::string::npos) << bad << " names the line: " << err;
+  }
+}
+
 // A [model] length in metres: `good` is read as it is, leaving it out gives 0, and each of `bad` is refused
 // with an error naming the key.
 struct MetresKey {
