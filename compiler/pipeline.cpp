@@ -26,6 +26,7 @@
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/apply_rules.hpp"
 #include "compiler/scene/luminaires.hpp"
+#include "compiler/textures/polygon_textures.hpp"
 #include "compiler/visibility/compute_cells.hpp"
 #include "model/error.hpp"
 
@@ -148,7 +149,23 @@ std::uint64_t compiler_identity() {
 std::uint64_t scene_hash(const SceneConfig& config) {
   std::uint64_t h = compiler_identity();
   h = fnv1a(h, config.text.data(), config.text.size());
-  return hash_file(h, config.model_file);
+  h = hash_file(h, config.model_file);
+  // What a mesh model reads beside itself (its .mtl, albedo maps) and the scene's texture folders: an
+  // edited texture must recompile, not be taken for the bundle's own.
+  std::vector<std::filesystem::path> folders{std::filesystem::path(config.model_file).parent_path()};
+  for (const auto& d : config.texture_dirs) folders.emplace_back(d);
+  for (const auto& folder : folders) {
+    std::vector<std::filesystem::path> files;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+      std::string ext = entry.path().extension().string();
+      for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      if (ext == ".mtl" || ext == ".png" || ext == ".jpg" || ext == ".jpeg") files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) h = hash_file(h, f.string());
+  }
+  return h;
 }
 
 CompileResult compile_scene(const SceneConfig& config, const CompileOptions& options,
@@ -196,6 +213,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       for (auto& v : p.vertices) v -= model.origin;
       for (auto& hole : p.holes)
         for (auto& v : hole) v -= model.origin;
+      if (p.texture_map) p.texture_map->translate(-model.origin);
     }
     for (auto& l : model.luminaires) l.position -= model.origin;  // imported lights move with the geometry
     t.done(model.polygons.size() + model.luminaires.size(), model.polygons.size() + model.luminaires.size());
@@ -259,7 +277,9 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       return poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid;
     };
     std::size_t coarse_fallbacks = 0;
-    std::size_t coarse_unrepaired = 0;  // coarse forms drawn without their seam repair
+    std::size_t coarse_unrepaired = 0;
+    std::vector<const model::Polygon*>
+        emitted;  // the model polygon of each bundle polygon  // coarse forms drawn without their seam repair
     auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh,
                     const PolygonMesh& coarse) {
       const double cell_size = dice_size(poly);
@@ -299,6 +319,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       rec.role = static_cast<std::uint32_t>(poly.role);
       rec.name = out.add_string(poly.name);
       out.polygons.push_back(rec);
+      emitted.push_back(&poly);
       if (luminaire != UINT32_MAX) {
         out.luminaires[luminaire].name = rec.name;
         panel_polygons.emplace_back(id, luminaire);
@@ -364,13 +385,15 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     for (std::size_t i = 0; i < to_emit.size(); ++i)
       emit(*to_emit[i].first, to_emit[i].second, meshes[i],
            coarse_meshes.empty() ? meshes[i] : coarse_meshes[i]);
+    add_polygon_textures(model, emitted, out);
     t.done(model.polygons.size() + panels.size(), out.polygons.size(),
            fmt::format("{} vertices {} triangles grid {} m; coarse {} triangles ({} polygons kept diced); "
-                       "T-junctions {} vertices into {} triangles (coarse {} into {}, {} left unrepaired)",
+                       "T-junctions {} vertices into {} triangles (coarse {} into {}, {} left unrepaired); "
+                       "textures {} ({} MiB)",
                        out.vertices.size(), out.indices.size() / 3, config.lighting.grid,
                        out.coarse_indices.size() / 3, coarse_fallbacks, seams.vertices_inserted,
                        seams.triangles_split, coarse_seams.vertices_inserted, coarse_seams.triangles_split,
-                       coarse_unrepaired));
+                       coarse_unrepaired, out.textures.size(), out.texels.size() >> 20));
   }
 
   const std::size_t circuits = model.circuits.size();

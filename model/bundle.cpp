@@ -97,6 +97,38 @@ std::uint32_t BundleContents::add_string(std::string_view s) {
   return offset;
 }
 
+void Bundle::validate_textures() const {
+  const auto fail = [&](const std::string& what) {
+    throw Error(located(path_, 0, "corrupt bundle: " + what, "recompile it with `walk compile`"));
+  };
+  if (textures_.empty() != polygon_textures_.empty()) fail("TEXR and PTEX come together");
+  if (textures_.empty()) {
+    if (!texels_.empty()) fail("TEXL without TEXR");
+    return;
+  }
+  if (polygon_textures_.size() != polygons_.size())
+    fail("PTEX holds " + std::to_string(polygon_textures_.size()) + " records, expected one per polygon (" +
+         std::to_string(polygons_.size()) + ")");
+  for (std::size_t i = 0; i < textures_.size(); ++i) {
+    const auto& t = textures_[i];
+    const std::uint64_t bytes = std::uint64_t(t.width) * t.height * 4;
+    if (t.width == 0 || t.height == 0 || t.first_byte > texels_.size() ||
+        bytes > texels_.size() - t.first_byte)
+      fail("TEXR " + std::to_string(i) + " is empty or its texels run past TEXL");
+    for (float m : t.mean)
+      if (!std::isfinite(m) || m <= 0.0f || m > 1.0f) fail("TEXR " + std::to_string(i) + " has a bad mean");
+    if (t.name >= strings_.size()) fail("TEXR " + std::to_string(i) + " name offset out of range");
+  }
+  for (std::size_t i = 0; i < polygon_textures_.size(); ++i) {
+    const auto& p = polygon_textures_[i];
+    if (p.texture != kNoTextureRecord && p.texture >= textures_.size())
+      fail("PTEX " + std::to_string(i) + " refers to a texture out of range");
+    for (int k = 0; k < 4; ++k)
+      if (!std::isfinite(p.u[k]) || !std::isfinite(p.v[k]))
+        fail("PTEX " + std::to_string(i) + " has a non-finite coordinate");
+  }
+}
+
 void write_bundle(const std::string& path, const BundleContents& c) {
   const std::vector<MetaRecord> meta{c.meta};
   const std::vector<PendingSection> sections{
@@ -122,6 +154,9 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kClusterPolygons, c.cluster_polygons),
       pending(section::kLodIndices, c.lod_indices),
       pending(section::kLodRanges, c.lod_ranges),
+      pending(section::kTextures, c.textures),
+      pending(section::kTexels, c.texels),
+      pending(section::kPolygonTextures, c.polygon_textures),
       pending(section::kStages, c.stages),
       PendingSection{section::kStrings, 1, c.strings.data(), c.strings.size()}};
 
@@ -265,6 +300,9 @@ void Bundle::validate() {
   get(section::kClusterPolygons, cluster_polygons_, false);
   get(section::kLodIndices, lod_indices_, false);
   get(section::kLodRanges, lod_ranges_, false);
+  get(section::kTextures, textures_, false);
+  get(section::kTexels, texels_, false);
+  get(section::kPolygonTextures, polygon_textures_, false);
   get(section::kStages, stages_, true);
   get(section::kStrings, strings_, true);
 
@@ -365,6 +403,7 @@ void Bundle::validate() {
   }
   for (std::uint32_t v : lod_indices_)
     if (v >= vertices_.size()) fail("LODX refers to a vertex out of range");
+  validate_textures();
   const std::size_t pvs_targets = clusters_.empty() ? polygons_.size() : clusters_.size();
   for (std::uint32_t id : pvs_)
     if (id >= pvs_targets)

@@ -37,6 +37,9 @@ struct BundleContents {
   std::vector<std::uint32_t> lod_indices;       // empty, or LODX
   std::vector<LodRangeRecord> lod_ranges;       // empty, or kLodLevels per cluster
   std::vector<std::array<float, 3>> leak_path;  // empty, or seed -> portals -> the largest leak (local)
+  std::vector<TextureRecord> textures;          // empty, or the albedo maps
+  std::vector<std::uint8_t> texels;             // TEXL
+  std::vector<PolygonTextureRecord> polygon_textures;  // empty, or one per polygon
   std::vector<StageRecord> stages;
   std::string strings{'\0'};  // offset 0 is the empty string
 
@@ -88,6 +91,10 @@ class Bundle {
   // Empty, or kLodLevels records per cluster over lod_indices().
   [[nodiscard]] std::span<const std::uint32_t> lod_indices() const { return lod_indices_; }
   [[nodiscard]] std::span<const LodRangeRecord> lod_ranges() const { return lod_ranges_; }
+  // Empty when the scene has no albedo maps; otherwise every polygon has a PolygonTextureRecord.
+  [[nodiscard]] std::span<const TextureRecord> textures() const { return textures_; }
+  [[nodiscard]] std::span<const std::uint8_t> texels() const { return texels_; }
+  [[nodiscard]] std::span<const PolygonTextureRecord> polygon_textures() const { return polygon_textures_; }
   // The polygons `cell` may see (its PVS's clusters expanded), sorted.
   [[nodiscard]] std::vector<std::uint32_t> cell_polygons(std::uint32_t cell) const;
   [[nodiscard]] std::span<const StageRecord> stages() const { return stages_; }
@@ -100,6 +107,7 @@ class Bundle {
  private:
   Bundle() = default;
   void validate();
+  void validate_textures() const;
 
   std::string path_;
   void* map_ = nullptr;
@@ -126,6 +134,9 @@ class Bundle {
   std::span<const std::uint32_t> cluster_polygons_;
   std::span<const std::uint32_t> lod_indices_;
   std::span<const LodRangeRecord> lod_ranges_;
+  std::span<const TextureRecord> textures_;
+  std::span<const std::uint8_t> texels_;
+  std::span<const PolygonTextureRecord> polygon_textures_;
   std::span<const StageRecord> stages_;
   std::span<const char> strings_;
 };

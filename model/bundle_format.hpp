@@ -142,6 +142,28 @@ struct LodRangeRecord {
 };
 static_assert(sizeof(LodRangeRecord) == 16);
 
+// Albedo maps, optional (a scene without textures has none of these sections and pays nothing). TEXR
+// describes each texture, its texels a range of TEXL: 8-bit sRGB RGBA, rows bottom-up (GL's t = 0 first).
+struct TextureRecord {
+  std::uint32_t width;
+  std::uint32_t height;
+  std::uint64_t first_byte;  // into TEXL
+  float mean[3];             // mean texel in linear light: the share of the polygon's reflectance it carries
+  std::uint32_t name;        // as the model file names it
+};
+static_assert(sizeof(TextureRecord) == 32);
+
+// One per polygon when TEXR is present: texture coordinates as affine functions of local position,
+// u = dot(u[0..2], p) + u[3] (likewise v), and which texture (kNoTextureRecord: the polygon has none).
+inline constexpr std::uint32_t kNoTextureRecord = UINT32_MAX;
+struct PolygonTextureRecord {
+  float u[4];
+  float v[4];
+  std::uint32_t texture;
+  std::uint32_t reserved[3] = {0, 0, 0};
+};
+static_assert(sizeof(PolygonTextureRecord) == 48);
+
 // A node of the cell tree: points with plane(p) >= 0 go to `front`. A negative child c is cell -c-1.
 struct NodeRecord {
   double plane[4];
@@ -187,6 +209,9 @@ inline constexpr std::uint32_t kClusters = tag("CLUS");  // optional, see Cluste
 inline constexpr std::uint32_t kClusterPolygons = tag("CLPO");  // u32 polygon indices of the clusters
 inline constexpr std::uint32_t kLodIndices = tag("LODX");       // optional, u32 VERT ids, see LodRangeRecord
 inline constexpr std::uint32_t kLodRanges = tag("LODR");        // optional, kLodLevels per cluster
+inline constexpr std::uint32_t kTextures = tag("TEXR");         // optional, see TextureRecord
+inline constexpr std::uint32_t kTexels = tag("TEXL");           // u8, see TextureRecord
+inline constexpr std::uint32_t kPolygonTextures = tag("PTEX");  // one per polygon with TEXR
 inline constexpr std::uint32_t kStages = tag("STAG");
 inline constexpr std::uint32_t kStrings = tag("STRS");
 }  // namespace section

@@ -32,6 +32,15 @@ int inspect(const std::string& path, bool list) {
   std::printf("clusters          %zu%s\n",
               b->clusters().empty() ? b->polygons().size() : b->clusters().size(),
               b->clusters().empty() ? " (one per polygon)" : "");
+  if (!b->textures().empty()) {
+    std::size_t mapped = 0;
+    for (const auto& p : b->polygon_textures()) mapped += p.texture != model::kNoTextureRecord ? 1 : 0;
+    std::printf("albedo maps       %zu (%.1f MiB) on %zu polygons:", b->textures().size(),
+                double(b->texels().size()) / (1 << 20), mapped);
+    for (const auto& t : b->textures())
+      std::printf(" %s %ux%u", std::string(b->string(t.name)).c_str(), t.width, t.height);
+    std::printf("\n");
+  }
   if (!b->cells().empty()) {
     const PvsTriangles t = pvs_triangles(*b);
     std::printf(

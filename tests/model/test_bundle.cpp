@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include "model/bundle.hpp"
 #include "model/error.hpp"
@@ -250,6 +251,49 @@ TEST_F(BundleTest, LevelsOfDetailAreReadAndValidated) {
   c.lod_indices = {0, 1, 99};
   write_bundle(path_, c);
   EXPECT_NE(open_error().find("LODX"), std::string::npos);
+}
+
+TEST_F(BundleTest, AlbedoMapsAreReadAndValidated) {
+  BundleContents c = small_bundle();
+  c.textures.push_back({2, 1, 0, {0.5f, 0.25f, 0.125f}, c.add_string("checker.png")});
+  c.texels.assign(2 * 1 * 4, 128);
+  c.polygon_textures.assign(c.polygons.size(), {{0.5f, 0, 0, 0}, {0, 0.5f, 0, 0}, 0});
+  write_bundle(path_, c);
+  {
+    const auto b = Bundle::open(path_);
+    ASSERT_EQ(b->textures().size(), 1u);
+    EXPECT_EQ(b->string(b->textures()[0].name), "checker.png");
+    EXPECT_EQ(b->texels().size(), 8u);
+    EXPECT_FLOAT_EQ(b->polygon_textures()[0].u[0], 0.5f);
+  }
+  const auto expect_error = [&](const BundleContents& damaged, const char* what) {
+    write_bundle(path_, damaged);
+    const std::string err = open_error();
+    EXPECT_NE(err.find(what), std::string::npos) << err;
+  };
+  BundleContents d = c;
+  d.polygon_textures[0].texture = 1;
+  expect_error(d, "PTEX 0 refers to a texture out of range");
+  d = c;
+  d.polygon_textures[0].v[3] = std::numeric_limits<float>::infinity();
+  expect_error(d, "PTEX 0 has a non-finite coordinate");
+  d = c;
+  d.polygon_textures.push_back(d.polygon_textures.back());
+  expect_error(d, "PTEX holds");
+  d = c;
+  d.texels.resize(4);
+  expect_error(d, "TEXR 0 is empty or its texels run past TEXL");
+  d = c;
+  d.textures[0].mean[1] = 0.0f;
+  expect_error(d, "TEXR 0 has a bad mean");
+  d = c;
+  d.polygon_textures.clear();
+  expect_error(d, "TEXR and PTEX come together");
+  // No texture but a polygon record saying "none" is fine: a scene where only some polygons have maps.
+  d = c;
+  d.polygon_textures[0].texture = kNoTextureRecord;
+  write_bundle(path_, d);
+  EXPECT_NO_THROW((void)Bundle::open(path_));
 }
 
 TEST_F(BundleTest, AnOlderFormatNamesItsVersionAndTheFix) {
