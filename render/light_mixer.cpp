@@ -38,6 +38,9 @@ void main() {
   v_radiosity = a_albedo * u_ambient + mix(coarse, fine, u_patch_weight);
   gl_Position = u_view_projection * vec4(a_position, 1.0);
   gl_ClipDistance[0] = dot(u_clip_plane, vec4(a_position, 1.0));
+#ifdef WALK_ALBEDO_MAPS
+  albedo_map(a_polygon, a_position);
+#endif
 }
 )glsl";
 

@@ -15,6 +15,7 @@
 #include "model/error.hpp"
 #include "model/model.hpp"
 #include "render/accumulator.hpp"
+#include "render/albedo_maps.hpp"
 #include "render/camera.hpp"
 #include "render/cluster_layout.hpp"
 #include "render/diagonals.hpp"
@@ -30,9 +31,20 @@
 
 namespace walk::render {
 
+namespace {
+
+// The scene shaders' sources, with the albedo-map code only when the bundle has maps.
+std::string scene_source(const model::Bundle& bundle, const std::string& source, bool vertex_stage) {
+  return bundle.textures().empty() ? source : with_albedo_maps(source, vertex_stage);
+}
+
+}  // namespace
+
 struct Renderer::Impl {
   const model::Bundle& bundle;
-  ShaderProgram program{"scene", kLightMixerVertexShader, kTonemapFragmentShader.c_str()};
+  ShaderProgram program{"scene", scene_source(bundle, kLightMixerVertexShader, true).c_str(),
+                        scene_source(bundle, kTonemapFragmentShader, false).c_str()};
+  std::optional<AlbedoMaps> albedo_maps;  // only when the bundle has them
   // Subdivided quads carry their mixed radiosity per vertex: made on first use, like the accumulator.
   std::optional<ShaderProgram> shaded_program;
   GLuint shaded_vao = 0, shaded_vbo = 0;
@@ -158,6 +170,7 @@ struct Renderer::Impl {
   void choose_diagonals();
   void draw_map(const View& view, int width, int height);
   void draw_shaded(GLuint vao, GLsizei count, const glm::mat4& view_projection);
+  void make_shaded_program();
 };
 
 namespace {
@@ -165,11 +178,15 @@ namespace {
 const char* const kShadedVertexShader = R"glsl(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_radiosity;
+layout(location = 2) in uint a_polygon;
 uniform mat4 u_view_projection;
 out vec3 v_radiosity;
 void main() {
   v_radiosity = a_radiosity;
   gl_Position = u_view_projection * vec4(a_position, 1.0);
+#ifdef WALK_ALBEDO_MAPS
+  albedo_map(a_polygon, a_position);
+#endif
 }
 )glsl";
 
@@ -185,6 +202,9 @@ void make_shaded_vao(GLuint& vao, GLuint& vbo) {
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(ShadedVertex),
                         reinterpret_cast<const void*>(offsetof(ShadedVertex, radiosity)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(ShadedVertex),
+                         reinterpret_cast<const void*>(offsetof(ShadedVertex, polygon)));
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
@@ -335,6 +355,7 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.polygon_buffer);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  if (!bundle.textures().empty()) r.albedo_maps.emplace(bundle);
   check_gl("uploading the bundle's buffers");
 }
 
@@ -479,6 +500,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
     if (r.u_polygon_light >= 0) glUniform1i(r.u_polygon_light, 1);
     glActiveTexture(GL_TEXTURE0);
+    if (r.albedo_maps) r.albedo_maps->bind(r.program.id());
     const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao : r.vao;
     glBindVertexArray(scene_vao);
     glUniform1f(r.u_opacity, 1.0f);
@@ -510,6 +532,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
+    if (r.albedo_maps) AlbedoMaps::unbind();
     glUseProgram(0);
   }
   if (reduced) {
@@ -543,6 +566,12 @@ void Renderer::Impl::update_polygon_mix() {
   polygon_mixed_levels = levels;
 }
 
+void Renderer::Impl::make_shaded_program() {
+  if (!shaded_program)
+    shaded_program.emplace("subdivided", scene_source(bundle, kShadedVertexShader, true).c_str(),
+                           scene_source(bundle, kTonemapFragmentShader, false).c_str());
+}
+
 // Leaves the scene program bound, as the caller had it.
 void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
                                  const glm::mat4& view_projection_matrix) {
@@ -552,6 +581,7 @@ void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
                      &view_projection_matrix[0][0]);
   glUniform1f(shaded_program->uniform("u_inv_exposure"), exposure > 0.0f ? 1.0f / exposure : 1.0f);
   glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
+  if (albedo_maps) albedo_maps->bind(shaded_program->id());
   glBindVertexArray(shaded_vao_id);
   glDrawArrays(GL_TRIANGLES, 0, count);
   glUseProgram(program.id());
@@ -592,8 +622,7 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glUniform4f(u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
 
   // The viewer: a red arrow above everything, pointing where they look.
-  if (!shaded_program)
-    shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader.c_str());
+  make_shaded_program();
   if (!marker_vao) make_shaded_vao(marker_vao, marker_vbo);
   glm::vec2 f(view.forward.x, view.forward.y);
   f = glm::length(f) > 1e-6f ? glm::normalize(f) : glm::vec2(1, 0);
@@ -663,8 +692,7 @@ void Renderer::Impl::choose_diagonals() {
   shaded_vertices = GLsizei(sub.triangles.size());
   if (!sub.triangles.empty()) {
     // The map view may have made the program already; the VAO is this step's own.
-    if (!shaded_program)
-      shaded_program.emplace("subdivided", kShadedVertexShader, kTonemapFragmentShader.c_str());
+    make_shaded_program();
     if (!shaded_vao) make_shaded_vao(shaded_vao, shaded_vbo);
     glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sub.triangles.size() * sizeof(ShadedVertex)),

@@ -18,14 +18,15 @@ Corner lerp(const Corner& a, const Corner& b, float t) {
   return {a.p + (b.p - a.p) * t, a.c + (b.c - a.c) * t};
 }
 
-void emit(const Corner q[4], float threshold, int depth, std::vector<ShadedVertex>& out) {
+void emit(const Corner q[4], std::uint32_t polygon, float threshold, int depth,
+          std::vector<ShadedVertex>& out) {
   const glm::vec3 c[4] = {q[0].c, q[1].c, q[2].c, q[3].c};
   if (depth <= 0 || quad_twist(c) <= threshold) {
     // Leaf: two triangles, split along the diagonal of least colour difference (as the parent step does).
     const bool other = difference(c[0], c[2]) < difference(c[1], c[3]);
     const int order[6] = {0, 1, 2, 0, 2, 3};
     const int bundle_order[6] = {0, 1, 3, 1, 2, 3};
-    for (int k : other ? order : bundle_order) out.push_back({q[k].p, q[k].c});
+    for (int k : other ? order : bundle_order) out.push_back({q[k].p, q[k].c, polygon});
     return;
   }
   // Bilinear: edge midpoints and the centre (the mean of the corners) lie on the bilinear surface.
@@ -33,7 +34,7 @@ void emit(const Corner q[4], float threshold, int depth, std::vector<ShadedVerte
                m30 = lerp(q[3], q[0], 0.5f), centre = lerp(m01, m23, 0.5f);
   const Corner children[4][4] = {
       {q[0], m01, centre, m30}, {m01, q[1], m12, centre}, {centre, m12, q[2], m23}, {m30, centre, m23, q[3]}};
-  for (const auto& child : children) emit(child, threshold, depth - 1, out);
+  for (const auto& child : children) emit(child, polygon, threshold, depth - 1, out);
 }
 
 }  // namespace
@@ -56,7 +57,7 @@ Subdivision subdivide(std::span<const Quad> quads, std::span<const model::Vertex
       const float* p = vertices[v[k]].position;
       q[k] = {{p[0], p[1], p[2]}, c[k]};
     }
-    emit(q, threshold, max_depth, result.triangles);
+    emit(q, quads[i].polygon, threshold, max_depth, result.triangles);
     result.replaced_quads.push_back(i);
   }
   return result;

@@ -15,9 +15,12 @@
 namespace walk::render {
 
 // A triangle corner with its final (already mixed) linear radiosity.
+// `polygon` lets an albedo map follow a subdivided quad; kNoPolygon (markers drawn over the scene) has none.
+inline constexpr std::uint32_t kNoPolygon = UINT32_MAX;
 struct ShadedVertex {
   glm::vec3 position;
   glm::vec3 radiosity;
+  std::uint32_t polygon = kNoPolygon;
 };
 
 struct Subdivision {

@@ -25,7 +25,13 @@ uniform float u_inv_exposure;
 uniform float u_opacity;
 out vec4 o_colour;
 )glsl") + kSrgbEncodeGlsl + R"glsl(
-void main() { o_colour = vec4(srgb_encode(v_radiosity * u_inv_exposure), u_opacity); }
+void main() {
+  vec3 radiosity = v_radiosity;
+#ifdef WALK_ALBEDO_MAPS
+  radiosity *= albedo_modulation();
+#endif
+  o_colour = vec4(srgb_encode(radiosity * u_inv_exposure), u_opacity);
+}
 )glsl";
 
 std::array<float, 256> srgb_decode_table() {
