@@ -30,16 +30,20 @@ void albedo_map(uint polygon, vec3 position) {
 }
 )glsl";
 
-// Sampled whatever the layer (a texture lookup under a branch has no derivatives for its mipmap level),
-// then dropped for polygons without a map.
+// Maps come in with the patches (u_patch_weight, shared with the vertex stage): the flat moving levels draw
+// none, since sampling costs llvmpipe 7-15 ms a 1280x720 frame (Sibenik), more than the levels save. The
+// branch is on a uniform, so the lookup inside keeps its derivatives; within it the map is sampled whatever
+// the layer (a lookup under a per-pixel branch would have none), then dropped for polygons without one.
 const char* const kFragmentHelpers = R"glsl(
 uniform sampler2DArray u_albedo_maps;
+uniform float u_patch_weight;
 in vec2 v_uv;
 flat in float v_layer;
 flat in vec3 v_modulation;
 vec3 albedo_modulation() {
+  if (u_patch_weight <= 0.0) return vec3(1.0);
   vec3 texel = texture(u_albedo_maps, vec3(v_uv, max(v_layer, 0.0))).rgb;
-  return v_layer < 0.0 ? vec3(1.0) : texel * v_modulation;
+  return v_layer < 0.0 ? vec3(1.0) : mix(vec3(1.0), texel * v_modulation, u_patch_weight);
 }
 )glsl";
 

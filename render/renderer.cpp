@@ -40,17 +40,39 @@ std::string scene_source(const model::Bundle& bundle, const std::string& source,
 
 }  // namespace
 
+// A scene program and its uniforms' locations.
+struct ScenePass {
+  ScenePass(const char* name, const std::string& vertex_source, const std::string& fragment_source)
+      : program(name, vertex_source.c_str(), fragment_source.c_str()),
+        u_view_projection(program.uniform("u_view_projection")),
+        u_light(program.uniform("u_light")),
+        u_circuit_count(program.uniform("u_circuit_count")),
+        // Unused (and so absent) when the shader has no circuits to loop over: not an error then.
+        u_levels(glGetUniformLocation(program.id(), "u_levels[0]")),
+        u_ambient(program.uniform("u_ambient")),
+        u_inv_exposure(program.uniform("u_inv_exposure")),
+        u_opacity(program.uniform("u_opacity")),
+        u_polygon_light(glGetUniformLocation(program.id(), "u_polygon_light")),
+        u_patch_weight(program.uniform("u_patch_weight")),
+        u_clip_plane(program.uniform("u_clip_plane")) {}
+  ShaderProgram program;
+  GLint u_view_projection, u_light, u_circuit_count, u_levels, u_ambient, u_inv_exposure, u_opacity,
+      u_polygon_light, u_patch_weight, u_clip_plane;
+};
+
 struct Renderer::Impl {
   const model::Bundle& bundle;
-  ShaderProgram program{"scene", scene_source(bundle, kLightMixerVertexShader, true).c_str(),
-                        scene_source(bundle, kTonemapFragmentShader, false).c_str()};
+  ScenePass full_pass{"scene", scene_source(bundle, kLightMixerVertexShader, true),
+                      scene_source(bundle, kTonemapFragmentShader, false)};
+  // With albedo maps, the flat moving levels draw through a program without them: sampling maps costs
+  // llvmpipe 7-15 ms a 1280x720 frame (Sibenik), more than any level saves. Empty without maps.
+  std::optional<ScenePass> flat_pass;
+  ScenePass* pass = &full_pass;           // this frame's
   std::optional<AlbedoMaps> albedo_maps;  // only when the bundle has them
   // Subdivided quads carry their mixed radiosity per vertex: made on first use, like the accumulator.
   std::optional<ShaderProgram> shaded_program;
   GLuint shaded_vao = 0, shaded_vbo = 0;
   GLsizei shaded_vertices = 0;
-  GLint u_view_projection = -1, u_light = -1, u_circuit_count = -1, u_levels = -1, u_ambient = -1,
-        u_inv_exposure = -1, u_opacity = -1, u_polygon_light = -1, u_patch_weight = -1;
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_vbo = 0,
          coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0;
   // Both index forms laid out cluster by cluster (fine INDX; coarse CIDX, drawn with flat polygon light
@@ -74,7 +96,6 @@ struct Renderer::Impl {
   bool frustum_culling = true;
   bool map_overlay = false;
   float map_fraction = 0.35f;
-  GLint u_clip_plane = -1;
   GLuint marker_vao = 0, marker_vbo = 0;
   FrameStats stats;
 
@@ -265,17 +286,8 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
                 " radiosity values exceed this GL's texture buffer limit of " + std::to_string(max_texels) +
                 "; compile with fewer circuits or a coarser mesh");
 
-  r.u_view_projection = r.program.uniform("u_view_projection");
-  r.u_light = r.program.uniform("u_light");
-  r.u_circuit_count = r.program.uniform("u_circuit_count");
-  r.u_ambient = r.program.uniform("u_ambient");
-  r.u_inv_exposure = r.program.uniform("u_inv_exposure");
-  r.u_opacity = r.program.uniform("u_opacity");
-  r.u_patch_weight = r.program.uniform("u_patch_weight");
-  r.u_clip_plane = r.program.uniform("u_clip_plane");
-  // Unused (and so absent) when the shader has no circuits to loop over: not an error then.
-  r.u_levels = glGetUniformLocation(r.program.id(), "u_levels[0]");
-  r.u_polygon_light = glGetUniformLocation(r.program.id(), "u_polygon_light");
+  if (!bundle.textures().empty())
+    r.flat_pass.emplace("scene without maps", kLightMixerVertexShader, kTonemapFragmentShader);
 
   r.levels.resize(circuits);
   for (std::size_t c = 0; c < circuits; ++c)
@@ -484,26 +496,28 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   if (options.patch_weight < 1.0f || map_overlay) update_polygon_mix();
   if (!list.opaque.empty() || !list.glass.empty()) {
     const auto& meta = r.bundle.meta();
-    glUseProgram(r.program.id());
-    glUniformMatrix4fv(r.u_view_projection, 1, GL_FALSE, &view_projection_matrix[0][0]);
-    glUniform1i(r.u_circuit_count, GLint(r.levels.size()));
-    if (r.u_levels >= 0 && !r.levels.empty())
-      glUniform1fv(r.u_levels, GLsizei(r.levels.size()), r.levels.data());
-    glUniform1f(r.u_ambient, meta.ambient);
-    glUniform1f(r.u_inv_exposure, meta.exposure > 0.0f ? 1.0f / meta.exposure : 1.0f);
-    glUniform1f(r.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));
-    glUniform4f(r.u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
+    r.pass = r.flat_pass && options.patch_weight <= 0.0f ? &*r.flat_pass : &r.full_pass;
+    const ScenePass& pass = *r.pass;
+    glUseProgram(pass.program.id());
+    glUniformMatrix4fv(pass.u_view_projection, 1, GL_FALSE, &view_projection_matrix[0][0]);
+    glUniform1i(pass.u_circuit_count, GLint(r.levels.size()));
+    if (pass.u_levels >= 0 && !r.levels.empty())
+      glUniform1fv(pass.u_levels, GLsizei(r.levels.size()), r.levels.data());
+    glUniform1f(pass.u_ambient, meta.ambient);
+    glUniform1f(pass.u_inv_exposure, meta.exposure > 0.0f ? 1.0f / meta.exposure : 1.0f);
+    glUniform1f(pass.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));
+    glUniform4f(pass.u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
-    glUniform1i(r.u_light, 0);
+    glUniform1i(pass.u_light, 0);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
-    if (r.u_polygon_light >= 0) glUniform1i(r.u_polygon_light, 1);
+    if (pass.u_polygon_light >= 0) glUniform1i(pass.u_polygon_light, 1);
     glActiveTexture(GL_TEXTURE0);
-    if (r.albedo_maps) r.albedo_maps->bind(r.program.id());
+    if (r.albedo_maps && r.pass == &r.full_pass) r.albedo_maps->bind(pass.program.id());
     const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao : r.vao;
     glBindVertexArray(scene_vao);
-    glUniform1f(r.u_opacity, 1.0f);
+    glUniform1f(pass.u_opacity, 1.0f);
     draw_batch(list.opaque);
     if (options.diagonals && r.shaded_vertices > 0) {
       // The subdivided quads, over their own quads (kept as a crack filler): pulled one depth step towards
@@ -518,7 +532,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     if (!list.glass.empty()) {
       // After everything opaque, depth-tested but not written, so glass behind glass still shows. Alpha
       // keeps 1 in the frame so read_pixels stays opaque.
-      glUniform1f(r.u_opacity, r.glass_opacity);
+      glUniform1f(pass.u_opacity, r.glass_opacity);
       glEnable(GL_BLEND);
       glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
       glDepthMask(GL_FALSE);
@@ -581,10 +595,14 @@ void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
                      &view_projection_matrix[0][0]);
   glUniform1f(shaded_program->uniform("u_inv_exposure"), exposure > 0.0f ? 1.0f / exposure : 1.0f);
   glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
-  if (albedo_maps) albedo_maps->bind(shaded_program->id());
+  if (albedo_maps) {
+    albedo_maps->bind(shaded_program->id());
+    // Subdivided quads are drawn only in still frames, with the patches: maps at full weight.
+    glUniform1f(glGetUniformLocation(shaded_program->id(), "u_patch_weight"), 1.0f);
+  }
   glBindVertexArray(shaded_vao_id);
   glDrawArrays(GL_TRIANGLES, 0, count);
-  glUseProgram(program.id());
+  glUseProgram(pass->program.id());
 }
 
 // Called inside the scene pass (program, light textures and uniforms bound). Top-down orthographic view of
@@ -610,16 +628,16 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glEnable(GL_CLIP_DISTANCE0);
-  glUniformMatrix4fv(u_view_projection, 1, GL_FALSE, &plan[0][0]);
-  glUniform4f(u_clip_plane, 0.0f, 0.0f, -1.0f, float(view.eye.z) + 0.5f);
-  glUniform1f(u_patch_weight, 0.0f);  // flat polygon light: a plan, not a picture
-  glUniform1f(u_opacity, 1.0f);
+  glUniformMatrix4fv(pass->u_view_projection, 1, GL_FALSE, &plan[0][0]);
+  glUniform4f(pass->u_clip_plane, 0.0f, 0.0f, -1.0f, float(view.eye.z) + 0.5f);
+  glUniform1f(pass->u_patch_weight, 0.0f);  // flat polygon light: a plan, not a picture
+  glUniform1f(pass->u_opacity, 1.0f);
   // Flat light: the coarse form where the bundle has one.
   const bool coarse = !layout.coarse.empty();
   glBindVertexArray(coarse ? coarse_vao : vao);
   draw_batch(list_for(FrameStats::kNoCell, coarse, nullptr).opaque);
   glDisable(GL_CLIP_DISTANCE0);
-  glUniform4f(u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
+  glUniform4f(pass->u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
 
   // The viewer: a red arrow above everything, pointing where they look.
   make_shaded_program();
