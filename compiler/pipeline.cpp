@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "compiler/cleanup/cleanup.hpp"
+#include "compiler/cleanup/stray_geometry.hpp"
 #include "compiler/geometry/coarse_mesh.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/openings.hpp"
@@ -26,6 +27,7 @@
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/apply_rules.hpp"
 #include "compiler/scene/luminaires.hpp"
+#include "compiler/scene/work_budget.hpp"
 #include "compiler/textures/polygon_textures.hpp"
 #include "compiler/visibility/compute_cells.hpp"
 #include "model/error.hpp"
@@ -177,6 +179,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   {
     StageTimer t(stages, "import");
     model = import_model(config, &imported);
+    check_coordinates(model, config.model_file);
     t.done(0, model.polygons.size(), imported.format + ": " + imported.detail);
   }
   {
@@ -199,9 +202,23 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     StageTimer t(stages, "cleanup");
     append_imported_materials(model, config, imported);
     const std::size_t before = model.polygons.size();
+    // Before the weld tolerance is taken from the model's size, which one stray face would inflate.
+    const StrayStats strays = remove_strays(model, config.keep_outliers);
+    if (strays.faces > 0)
+      spdlog::warn(
+          "{}: {} face(s) lie far from the rest of the model, the first at ({:.1f}, {:.1f}, {:.1f}) m "
+          "(source line or face {}); {} (set [model] outliers = \"{}\" in {} to change this)",
+          config.model_file, strays.faces, strays.first.x, strays.first.y, strays.first.z, strays.first_line,
+          config.keep_outliers ? "kept" : "left out", config.keep_outliers ? "drop" : "keep", config.path);
     const CleanupStats s = clean_up(model, config.weld_metres);
     weld_tolerance = s.weld_tolerance;
-    t.done(before, model.polygons.size(), s.summary());
+    if (std::none_of(model.polygons.begin(), model.polygons.end(),
+                     [](const auto& p) { return drawn(p.role); }))
+      throw Error(located(
+          config.model_file, 0,
+          fmt::format("no face is left to draw after clean-up ({}; {})", strays.summary(), s.summary()),
+          "check the model's units and geometry; nothing was written"));
+    t.done(before, model.polygons.size(), strays.summary() + "; " + s.summary());
   }
   {
     StageTimer t(stages, "recentre");
@@ -255,6 +272,10 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
                          s.explicit_panels, s.groups_without_ceiling, model.circuits.size()));
     }
   }
+
+  // What the mesh and light stages would cost, refused before they allocate anything.
+  check_patch_budget(model, config, physical_memory_bytes());
+  check_ray_budget(model, config);
 
   auto& out = result.bundle;
   std::vector<SurfaceSample> samples;        // one per vertex of a lit polygon

@@ -82,9 +82,11 @@ model::Model import_model(const SceneConfig& config, ImportReport* report) {
     m = read_mesh(config.model_file, {config.metres_per_unit, config.y_up, 1.0, config.texture_dirs}, &s);
     r.detail = fmt::format(
         "meshes {} vertices {} faces {} (triangles {}) points/lines skipped {} materials {} "
-        "emissive faces {} -> luminaires {} textures named {} loaded {} missing {} textured faces {}",
+        "emissive faces {} -> luminaires {} textures named {} loaded {} missing {} textured faces {} "
+        "material libraries missing {}",
         s.meshes, s.vertices, s.faces, s.triangles, s.skipped_primitives, s.materials, s.emissive_faces,
-        s.luminaires, s.textures_named, s.textures_loaded, s.textures_missing, s.faces_textured);
+        s.luminaires, s.textures_named, s.textures_loaded, s.textures_missing, s.faces_textured,
+        s.material_libraries_missing);
   }
   // Imported materials go after the config's (index 0, "default", is the config's default).
   const auto first = static_cast<std::uint32_t>(config.materials.empty() ? 1 : config.materials.size());

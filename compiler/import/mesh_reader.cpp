@@ -7,12 +7,15 @@
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <glm/geometric.hpp>
 #include <map>
 #include <numbers>
 #include <optional>
+#include <sstream>
 
 #include "compiler/import/texture_image.hpp"
 #include "compiler/import/uv_fit.hpp"
@@ -60,6 +63,31 @@ model::Luminaire lamp_luminaire(const Lamp& lamp, double emission_scale) {
   l.power = lamp.emission * (std::numbers::pi * lamp.area * emission_scale);
   l.circuit = lamp.circuit;
   return l;
+}
+
+// An OBJ's `mtllib` files that are not beside it: assimp goes on with a default material and says nothing
+// a user sees, so the model would compile grey without a word.
+void warn_missing_material_libraries(const std::string& path, MeshStats& stats) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext != ".obj") return;
+  std::ifstream in(path);
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    if (line.rfind("mtllib", 0) != 0 || line.size() < 7 || !std::isspace(static_cast<unsigned char>(line[6])))
+      continue;
+    std::istringstream names(line.substr(6));
+    for (std::string name; names >> name;) {
+      std::error_code ec;
+      const auto library = std::filesystem::path(path).parent_path() / name;
+      if (std::filesystem::is_regular_file(library, ec)) continue;
+      ++stats.material_libraries_missing;
+      spdlog::warn(
+          "{}:{}: the material library '{}' is not at {}; its materials get the default grey "
+          "(put the .mtl beside the model)",
+          path, number, name, library.string());
+    }
+  }
 }
 
 // Where a texture named `name` is: beside the model (as named, then by its file name alone, since models
@@ -153,6 +181,7 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
     throw Error(located(path, 0, std::string("assimp cannot read the file: ") + importer.GetErrorString(),
                         "check the format and that the file is complete (OBJ also needs its .mtl)"));
   MeshStats stats;
+  warn_missing_material_libraries(path, stats);
   model::Model model;
   model.materials.push_back({"default", {0.5, 0.5, 0.5}});
   std::vector<std::uint32_t> material_index(scene->mNumMaterials, 0);

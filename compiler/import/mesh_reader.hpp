@@ -36,8 +36,9 @@ struct MeshStats {
   std::size_t textures_named = 0;
   std::size_t textures_loaded = 0;
   std::size_t textures_missing = 0;
-  std::size_t faces_textured =
-      0;  // faces with a texture map (their material has an albedo map, the file UVs)
+  // Faces with a texture map (their material has an albedo map, and the file gave UVs).
+  std::size_t faces_textured = 0;
+  std::size_t material_libraries_missing = 0;  // OBJ `mtllib` files not beside the model (warned by name)
 };
 
 // Throws walk::Error naming the file (assimp reports no line numbers) when assimp cannot read it or it has

@@ -49,7 +49,7 @@ constexpr const char* kFormats[] = {"dxf", "plan", "map", "obj", "gltf", "glb",
 void read_model(const TomlTable& root, SceneConfig& cfg) {
   const auto model = root.table("model");
   if (!model) root.fail("model", "missing [model] table with at least `file = \"building.dxf\"`");
-  model->only({"file", "format", "units", "scale", "up", "faces", "weld", "seal", "textures"});
+  model->only({"file", "format", "units", "scale", "up", "faces", "weld", "seal", "textures", "outliers"});
   if (model->has("weld")) {
     cfg.weld_metres = positive(*model, "weld", 0.0);
     if (cfg.weld_metres > 0.01)
@@ -65,6 +65,9 @@ void read_model(const TomlTable& root, SceneConfig& cfg) {
   fs::path p(*file);
   if (p.is_relative()) p = fs::path(cfg.path).parent_path() / p;
   cfg.model_file = p.lexically_normal().string();
+  std::error_code folder_error;
+  if (fs::is_directory(p, folder_error))
+    model->fail("file", "'" + cfg.model_file + "' is a folder; name the model file inside it");
   std::string ext = p.extension().string();
   for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   cfg.format = model->string("format").value_or(ext.empty() ? "" : ext.substr(1));
@@ -92,6 +95,11 @@ void read_model(const TomlTable& root, SceneConfig& cfg) {
   if (faces != "inward" && faces != "outward")
     model->fail("faces", "must be \"inward\" (faces look into their room) or \"outward\" (EnergyPlus zones)");
   cfg.faces_point_outward = faces == "outward";
+  const std::string outliers = model->string("outliers").value_or("drop");
+  if (outliers != "drop" && outliers != "keep")
+    model->fail("outliers",
+                "must be \"drop\" (faces far from the rest are left out, the default) or \"keep\"");
+  cfg.keep_outliers = outliers == "keep";
   // Folders searched for albedo maps after the model's own, relative to the config like `file`.
   if (model->has("textures")) {
     const auto folders = model->strings("textures");

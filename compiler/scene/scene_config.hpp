@@ -70,6 +70,7 @@ struct SceneConfig {
   bool y_up = false;         // the file's y axis is up (`up = "y"`, the default for meshes); z is up inside
   double weld_metres = 0.0;  // [model] weld: corners closer than this merge; 0: relative to the model's size
   double seal_metres = 0.0;  // [model] seal: slits narrower than this between coplanar faces are filled
+  bool keep_outliers = false;  // [model] outliers = "keep": faces far from the rest stay (see stray_geometry)
   std::vector<std::string> texture_dirs;  // [model] textures: folders searched for albedo maps (absolute)
   PlanOptions plan;                       // [plan]: how a 2D floor plan becomes 3D
   bool faces_point_outward = false;       // true: flip every face so it faces into its room (EnergyPlus)

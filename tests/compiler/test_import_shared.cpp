@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
 #include <map>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "compiler/cleanup/stray_geometry.hpp"
 #include "compiler/import/import_model.hpp"
 #include "compiler/scene/apply_rules.hpp"
 #include "compiler/scene/scene_config.hpp"
@@ -329,6 +331,25 @@ TEST(ImportShared, ConferenceRoomObj) {
 
 TEST(ImportShared, SibenikObj) {
   check_obj("sibenik.toml", "/sibenik/sibenik.obj", 1.0, 0);
+}
+
+}  // namespace
+}  // namespace walk::compiler
+
+namespace walk::compiler {
+namespace {
+
+// No shipped scene has a stray face or an absurd coordinate: the stray fence leaves every real model whole.
+TEST(ImportShared, NoShippedSceneHasStrays) {
+  for (const auto& entry : std::filesystem::directory_iterator(kScenes)) {
+    if (entry.path().extension() != ".toml") continue;
+    const SceneConfig cfg = load_scene_config(entry.path().string());
+    model::Model m = import_model(cfg, nullptr);
+    EXPECT_NO_THROW(check_coordinates(m, cfg.model_file)) << entry.path();
+    (void)apply_rules(m, cfg);
+    const StrayStats s = remove_strays(m, true);
+    EXPECT_EQ(s.faces, 0u) << entry.path() << ": " << s.summary();
+  }
 }
 
 }  // namespace
