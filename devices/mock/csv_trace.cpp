@@ -88,6 +88,9 @@ CsvTrace CsvTrace::load(const std::string& path, const std::vector<std::string>&
                             "'" + fields[i] + "' in column '" + (i == 0 ? "time" : trace.columns_[i - 1]) +
                                 "' is not a number"));
       if (i == 0) {
+        if (v < 0.0)
+          throw Error(located(path, line_number, "time " + fields[i] + " is negative",
+                              "times are seconds from the start of the walk, from 0"));
         if (!trace.times_.empty() && v <= trace.times_.back())
           throw Error(located(path, line_number, "time " + fields[i] + " is not after the previous row's",
                               "times must increase strictly"));

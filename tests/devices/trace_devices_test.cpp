@@ -93,6 +93,13 @@ TEST_F(TraceTest, NonIncreasingTimeNamesFileAndLine) {
   EXPECT_NE(msg.find("increase"), std::string::npos) << msg;
 }
 
+TEST_F(TraceTest, NegativeTimeNamesFileAndLine) {
+  const auto path = write("negative.csv", "time,yaw_deg\n# starts before the walk\n-0.5,0\n1,0\n");
+  const auto msg = error_of([&] { TraceHeadTracker h(path); });
+  EXPECT_NE(msg.find(path + ":3:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("negative"), std::string::npos) << msg;
+}
+
 TEST_F(TraceTest, WrongColumnCountNamesFileAndLine) {
   const auto path = write("cols.csv", "time,ch0,ch1\n0,1,1\n1,0.5\n");
   const auto msg = error_of([&] { TraceDimmerPanel d(path); });
