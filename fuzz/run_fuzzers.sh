@@ -27,22 +27,26 @@ build() {  # name sources...: rebuilt only when a source is newer than the binar
   local name=$1
   shift
   local stale=0
-  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp; do [ "$f" -nt "$out/$name" ] && stale=1; done
+  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp; do
+    [ -f "$f" ] && [ "$f" -nt "$out/$name" ] && stale=1
+  done
   [ -x "$out/$name" ] && [ $stale = 0 ] && return 0
   echo "run_fuzzers: building $name"
   "$cxx" "${flags[@]}" "$@" -o "$out/$name"
 }
 build dxf_fuzzer "$src"/fuzz/dxf_fuzzer.cpp "${dxf[@]}" "${common[@]}"
 build map_fuzzer "$src"/fuzz/map_fuzzer.cpp "${map[@]}" "${common[@]}"
+build bundle_fuzzer "$src"/fuzz/bundle_fuzzer.cpp "$src"/model/bundle.cpp "${common[@]}" -lz
+build csv_trace_fuzzer "$src"/fuzz/csv_trace_fuzzer.cpp "$src"/devices/mock/csv_trace.cpp "${common[@]}"
 status=0
-for kind in dxf map; do
+for kind in dxf map bundle csv_trace; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
   echo "run_fuzzers: ${kind}_fuzzer for ${seconds} s"
   if ! (cd "$out" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
         ./${kind}_fuzzer -seed=1 -runs=$((seconds * 5000)) -max_total_time="$seconds" -timeout=60 -report_slow_units=60 -rss_limit_mb=2048 -max_len=65536 \
-        -dict="$src/fuzz/$kind.dict" -artifact_prefix="$out/artifacts-$kind/" -print_final_stats=1 "$corpus" > "$out/${kind}_fuzzer.log" 2>&1); then
+        $([ -f "$src/fuzz/$kind.dict" ] && echo "-dict=$src/fuzz/$kind.dict") -artifact_prefix="$out/artifacts-$kind/" -print_final_stats=1 "$corpus" > "$out/${kind}_fuzzer.log" 2>&1); then
     echo "run_fuzzers: ${kind}_fuzzer FAILED; the last lines of $out/${kind}_fuzzer.log:"
     tail -40 "$out/${kind}_fuzzer.log"
     # The failing input itself, so that a failure seen only in CI's log can be replayed anywhere:

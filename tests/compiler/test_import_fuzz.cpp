@@ -1,6 +1,7 @@
-// The libFuzzer targets for the DXF and .map parsers (fuzz/), built with clang and run for a bounded time
-// (WALK_FUZZ_SECONDS, default 30 s each) on the committed seed corpus: no crash, no hang, and every rejection
-// a walk::Error naming file and line. Skipped where clang cannot link libFuzzer.
+// The libFuzzer targets (fuzz/: DXF, .map, bundle reader with checksums repaired, CSV traces), built with
+// clang and run for a bounded time (WALK_FUZZ_SECONDS, default 30 s each) on the committed seed corpus: no
+// crash, no hang, and every rejection a walk::Error naming file and line. Skipped where clang cannot link
+// libFuzzer.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -12,7 +13,7 @@
 namespace walk::compiler {
 namespace {
 
-TEST(ImportFuzz, DxfAndMapParsersSurviveBoundedFuzzing) {
+TEST(ImportFuzz, ParsersSurviveBoundedFuzzing) {
   const char* env = std::getenv("WALK_FUZZ_SECONDS");
   const std::string seconds = env && *env ? env : "30";
   const std::string out = std::string(WALK_BINARY_DIR) + "/fuzz";
