@@ -7,7 +7,9 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
+#include <map>
 #include <numbers>
+#include <set>
 
 #include "compiler/import/dxf_document.hpp"
 #include "compiler/import/dxf_geometry.hpp"
@@ -50,7 +52,49 @@ class Builder {
     for (const DxfEntity& e : list) entity(e, ctx);
   }
 
+  // Counts what the drawing expands to through its INSERT arrays before expanding anything (each block's
+  // count once), so a hostile file is refused in milliseconds, not after gigabytes of faces.
+  void check_expansion(const std::vector<DxfEntity>& list) {
+    std::map<std::string, double> counted;
+    double total = 0.0;
+    for (const DxfEntity& e : list) {
+      total += expansion(e, counted, 0);
+      if (total > double(kMaxPrimitives)) {
+        char estimate[32];
+        std::snprintf(estimate, sizeof estimate, "%.3g", total);
+        throw Error(located(file_, e.line,
+                            std::string("the drawing would expand to ") + estimate +
+                                " faces and lines through its INSERT arrays (this INSERT and those before "
+                                "it), more than " +
+                                std::to_string(kMaxPrimitives),
+                            "check the block's column/row counts (group codes 70/71) and nesting"));
+      }
+    }
+  }
+
  private:
+  // Primitives one entity expands to: 1, or an INSERT's columns x rows x its block's count. Saturates at
+  // infinity; a nesting deeper than kMaxInsertDepth is left to the build, which names it.
+  double expansion(const DxfEntity& e, std::map<std::string, double>& counted, int depth) {
+    if (e.type != "INSERT") return 1.0;
+    if (depth >= kMaxInsertDepth) return 1.0;
+    const Fields f{e, file_};
+    const double copies = double(std::max(1, f.integer(70, 1))) * double(std::max(1, f.integer(71, 1)));
+    const std::string name = e.text(2, "");
+    const auto block = doc_.blocks.find(name);
+    if (block == doc_.blocks.end()) return copies;  // the build names the missing block
+    auto it = counted.find(name);
+    if (it == counted.end()) {
+      // A block met again while it is being counted inserts itself: counted as one here, named by the build.
+      if (!counting_.insert(name).second) return copies;
+      double inside = 0.0;
+      for (const DxfEntity& child : block->second.entities) inside += expansion(child, counted, depth + 1);
+      counting_.erase(name);
+      it = counted.emplace(name, inside).first;
+    }
+    return copies * it->second;
+  }
+
   void entity(const DxfEntity& e, const Context& ctx) {
     const Fields f{e, file_};
     if (f.integer(67, 0) == 1) {  // paper space: layouts and title blocks, not the building
@@ -224,6 +268,7 @@ class Builder {
   std::vector<DxfWire>* wires_;
   model::Model& model_;
   std::size_t primitives_ = 0;
+  std::set<std::string> counting_;  // blocks whose expansion is being counted
 };
 
 }  // namespace
@@ -303,6 +348,7 @@ model::Model read_dxf(std::istream& in, const std::string& file, const DxfOption
   stats.unit_scale = scale;
   model::Model model;
   Builder builder(doc, file, scale, stats, wires, model);
+  builder.check_expansion(doc.entities);
   builder.entities(doc.entities, Context{});
   if (model.polygons.empty() && !wires) {
     throw Error(

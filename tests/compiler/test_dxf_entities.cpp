@@ -3,6 +3,7 @@
 // and arrays, colours by layer/block/true colour, $INSUNITS, and located errors.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
@@ -388,6 +389,28 @@ TEST(DxfEntities, HugeArrayIsAnErrorNotAnOutOfMemory) {
            {"ENTITIES",
             pairs({{0, "INSERT"}, {2, "CUBE"}, {70, "32767"}, {71, "32767"}, {44, "1"}, {45, "1"}})}}));
   EXPECT_NE(e.find("INSERT arrays"), std::string::npos) << e;
+}
+
+TEST(DxfEntities, NestedArrayBombIsRefusedBeforeExpanding) {
+  // 100 x 100 copies of a block that is 100 x 100 cubes: 1e8 cubes, counted (not built) and refused.
+  const std::string nested = blocks() + pairs({{0, "BLOCK"},
+                                               {2, "GRID"},
+                                               {0, "INSERT"},
+                                               {2, "CUBE"},
+                                               {70, "100"},
+                                               {71, "100"},
+                                               {44, "1"},
+                                               {45, "1"},
+                                               {0, "ENDBLK"}});
+  const auto start = std::chrono::steady_clock::now();
+  const std::string e = error_of(
+      dxf({{"BLOCKS", nested},
+           {"ENTITIES",
+            pairs({{0, "INSERT"}, {2, "GRID"}, {70, "100"}, {71, "100"}, {44, "100"}, {45, "100"}})}}));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(e.find("would expand to"), std::string::npos) << e;
+  EXPECT_NE(e.find("test.dxf:"), std::string::npos) << e;
+  EXPECT_LT(seconds, 2.0) << "refused before building (milliseconds; generous for a loaded CI machine)";
 }
 
 TEST(DxfEntities, NonFiniteCoordinateIsAnError) {
