@@ -27,7 +27,7 @@ build() {  # name sources...: rebuilt only when a source is newer than the binar
   local name=$1
   shift
   local stale=0
-  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp; do
+  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp "$src"/devices/*/*.hpp; do
     [ -f "$f" ] && [ "$f" -nt "$out/$name" ] && stale=1
   done
   [ -x "$out/$name" ] && [ $stale = 0 ] && return 0
@@ -38,8 +38,9 @@ build dxf_fuzzer "$src"/fuzz/dxf_fuzzer.cpp "${dxf[@]}" "${common[@]}"
 build map_fuzzer "$src"/fuzz/map_fuzzer.cpp "${map[@]}" "${common[@]}"
 build bundle_fuzzer "$src"/fuzz/bundle_fuzzer.cpp "$src"/model/bundle.cpp "${common[@]}" -lz
 build csv_trace_fuzzer "$src"/fuzz/csv_trace_fuzzer.cpp "$src"/devices/mock/csv_trace.cpp "${common[@]}"
+build hid_report_fuzzer "$src"/fuzz/hid_report_fuzzer.cpp "$src"/devices/hid/report_layout.cpp -lfmt
 status=0
-for kind in dxf map bundle csv_trace; do
+for kind in dxf map bundle csv_trace hid_report; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
