@@ -31,6 +31,7 @@
 #include "compiler/textures/polygon_textures.hpp"
 #include "compiler/visibility/compute_cells.hpp"
 #include "model/error.hpp"
+#include "model/version.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -511,6 +512,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
   meta.ambient = static_cast<float>(config.lighting.ambient);
   meta.scene_hash = scene_hash(config);
   meta.circuit_count = static_cast<std::uint32_t>(circuits);
+  meta.compiler_version = out.add_string(std::string("walk ") + version());
   if (config.lighting.exposure) {
     meta.exposure = static_cast<float>(*config.lighting.exposure);
   } else {

@@ -12,6 +12,7 @@
 #include "firmware-host/stop_signal.hpp"
 #include "firmware-host/unit_dropin.hpp"
 #include "model/error.hpp"
+#include "model/version.hpp"
 
 namespace {
 
@@ -28,6 +29,7 @@ void setup_logging() {
 int main(int argc, char** argv) {
   using namespace walk::kiosk;
   CLI::App app{"walkd: real-time building walkthrough kiosk"};
+  app.set_version_flag("--version", std::string("walkd ") + walk::version());
   std::string config_path, output, bundle_path;
   double simulate = -1.0;
   bool print_dropin = false;

@@ -312,6 +312,7 @@ void Bundle::validate() {
     if (offset >= strings_.size()) fail(std::string(what) + " name offset out of range");
   };
   if (meta_->circuit_count != circuits_.size()) fail("META circuit count disagrees with CIRC");
+  check_string(meta_->compiler_version, "META compiler version");
   if (!std::isfinite(meta_->exposure) || meta_->exposure <= 0.0f) fail("META exposure must be positive");
   if (light_.size() != vertices_.size() * circuits_.size() * 3)
     fail("LGHT holds " + std::to_string(light_.size()) + " floats, expected vertices*circuits*3");

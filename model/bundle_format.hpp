@@ -45,7 +45,8 @@ struct MetaRecord {
   float exposure;  // radiosity (W/m2) that maps to display white
   std::uint64_t scene_hash;
   std::uint32_t circuit_count;
-  std::uint32_t reserved;
+  std::uint32_t
+      compiler_version;  // string offset: the `walk` that wrote it (0, the empty string: unrecorded)
 };
 static_assert(sizeof(MetaRecord) == 72);
 

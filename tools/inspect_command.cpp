@@ -16,6 +16,8 @@ int inspect(const std::string& path, bool list) {
   std::printf("bundle %s: %llu bytes, format version %u, scene hash %016llx\n", path.c_str(),
               static_cast<unsigned long long>(b->file_size()), model::kBundleVersion,
               static_cast<unsigned long long>(m.scene_hash));
+  std::printf("compiled by       %s\n",
+              m.compiler_version ? std::string(b->string(m.compiler_version)).c_str() : "(not recorded)");
   std::printf("origin (world m)  %.3f %.3f %.3f\n", m.origin[0], m.origin[1], m.origin[2]);
   std::printf("bounds (local m)  %.3f %.3f %.3f .. %.3f %.3f %.3f\n", m.bounds_min[0], m.bounds_min[1],
               m.bounds_min[2], m.bounds_max[0], m.bounds_max[1], m.bounds_max[2]);

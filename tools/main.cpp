@@ -4,11 +4,13 @@
 #include <iostream>
 
 #include "model/error.hpp"
+#include "model/version.hpp"
 #include "tools/commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"walk: compile, inspect and render Walkthrough bundles"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("walk ") + walk::version());
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log each stage as it runs");
   int exit_code = 0;

@@ -13,6 +13,7 @@
 
 #include "devices/sim/panel_simulator.hpp"
 #include "model/error.hpp"
+#include "model/version.hpp"
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -25,6 +26,10 @@ int main(int argc, char** argv) {
   std::string tcp, rtu;
   int registers = 8, baud = 19200, slave = 1;
   std::vector<std::pair<int, int>> sets;
+  if (argc == 2 && std::string(argv[1]) == "--version") {
+    std::printf("walk-panel-sim %s\n", walk::version());
+    return 0;
+  }
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
     if (k == "--tcp")
