@@ -207,6 +207,10 @@ std::unique_ptr<Bundle> Bundle::open(const std::string& path) {
     throw Error(located(path, 0, std::string("cannot open bundle: ") + std::strerror(errno),
                         "run `walk compile scene.toml -o " + path + "` first"));
   struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
+    ::close(fd);
+    throw Error(located(path, 0, "is a folder, not a bundle", "name the .walk file inside it"));
+  }
   if (::fstat(fd, &st) != 0 || st.st_size < static_cast<off_t>(sizeof(FileHeader))) {
     ::close(fd);
     throw Error(located(path, 0, "not a bundle: file is too short", "recompile it with `walk compile`"));

@@ -422,7 +422,7 @@ void add_bench_render_command(CLI::App& bench, int& exit_code) {
       "--plot", o->plot,
       "Also write this PNG (and its CSV beside it): frame times against model size, with gnuplot");
   cmd->add_option("--size", o->size, "WIDTHxHEIGHT");
-  cmd->add_option("--backend", o->backend, "auto, osmesa, egl or glfw");
+  cmd->add_option("--backend", o->backend, "auto, osmesa, egl, glfw or gbm");
   cmd->add_option("--frames", o->frames, "Frames along the scripted walk")->check(CLI::Range(2, 100000));
   cmd->add_option("--target-hz", o->target_hz, "Frame rate the governor holds")
       ->check(CLI::Range(1.0, 1000.0));

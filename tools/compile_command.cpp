@@ -1,6 +1,8 @@
 // walk compile scene.toml -o x.walk: runs the display compiler and prints what each stage did.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <thread>
 
 #include "compiler/pipeline.hpp"
 #include "tools/commands.hpp"
@@ -11,14 +13,15 @@ void add_compile_command(CLI::App& app, int& exit_code) {
   struct Args {
     std::string scene, output = "scene.walk";
     bool force = false;
-    unsigned threads = 2;
+    unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 256u);  // 0 when unknown: 1
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("compile", "Compile a scene config into a .walk bundle");
   cmd->add_option("scene", args->scene, "Scene config (TOML)")->required();
   cmd->add_option("-o,--output", args->output, "Bundle to write");
   cmd->add_flag("-f,--force", args->force, "Recompile even when the bundle is up to date");
-  cmd->add_option("-j,--threads", args->threads, "Worker threads")->check(CLI::Range(1u, 256u));
+  cmd->add_option("-j,--threads", args->threads, "Worker threads (default: this machine's cores)")
+      ->check(CLI::Range(1u, 256u));
   cmd->callback([args, &exit_code] {
     std::vector<compiler::StageReport> stages;
     compiler::CompileOptions options;

@@ -10,6 +10,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"walk: compile, inspect and render Walkthrough bundles"};
   app.require_subcommand(1);
+  app.option_defaults()->always_capture_default();  // --help shows every option's default
   app.set_version_flag("--version", std::string("walk ") + walk::version());
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log each stage as it runs");

@@ -80,7 +80,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--eye", args->eye, "Eye position x,y,z (local metres)")->delimiter(',')->required();
   cmd->add_option("--look", args->look, "Point looked at x,y,z (local metres)")->delimiter(',')->required();
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT");
-  cmd->add_option("--backend", args->backend, "auto, osmesa, egl or glfw");
+  cmd->add_option("--backend", args->backend, "auto, osmesa, egl, glfw or gbm");
   cmd->add_option("--dimmers", args->dimmers, "Dimmer level per circuit, 0..1")->delimiter(',');
   cmd->add_option("--fov", args->fov, "Vertical field of view, degrees");
   cmd->add_flag("--map", args->map,

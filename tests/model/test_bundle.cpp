@@ -296,6 +296,17 @@ TEST_F(BundleTest, AlbedoMapsAreReadAndValidated) {
   EXPECT_NO_THROW((void)Bundle::open(path_));
 }
 
+TEST_F(BundleTest, AFolderIsNamedAsOne) {
+  const std::string folder = (dir_ / "scene.walk").string();
+  std::filesystem::create_directories(folder);
+  try {
+    (void)Bundle::open(folder);
+    ADD_FAILURE() << "a folder opened as a bundle";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a folder"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(BundleTest, AnOlderFormatNamesItsVersionAndTheFix) {
   write_bundle(path_, small_bundle());
   std::vector<char> b = bytes();

@@ -4,11 +4,13 @@
 #include <png.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "model/bundle.hpp"
 #include "two_rooms.hpp"
@@ -29,6 +31,16 @@ int run(const std::string& command, std::string& output) {
   output = text.str();
   fs::remove(log);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(WalkTool, HelpShowsDefaultsAndThreadsDefaultToTheCores) {
+  std::string output;
+  ASSERT_EQ(run(kWalk + " compile --help", output), 0) << output;
+  const unsigned cores = std::clamp(std::thread::hardware_concurrency(), 1u, 256u);
+  EXPECT_NE(output.find("in [1 - 256]=" + std::to_string(cores)), std::string::npos) << output;
+  EXPECT_NE(output.find("TEXT=scene.walk"), std::string::npos) << output;
+  ASSERT_EQ(run(kWalk + " render --help", output), 0) << output;
+  EXPECT_NE(output.find("glfw or gbm"), std::string::npos) << output;
 }
 
 TEST(WalkTool, RendersACompiledHouse) {
