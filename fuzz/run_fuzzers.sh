@@ -39,8 +39,9 @@ build map_fuzzer "$src"/fuzz/map_fuzzer.cpp "${map[@]}" "${common[@]}"
 build bundle_fuzzer "$src"/fuzz/bundle_fuzzer.cpp "$src"/model/bundle.cpp "${common[@]}" -lz
 build csv_trace_fuzzer "$src"/fuzz/csv_trace_fuzzer.cpp "$src"/devices/mock/csv_trace.cpp "${common[@]}"
 build hid_report_fuzzer "$src"/fuzz/hid_report_fuzzer.cpp "$src"/devices/hid/report_layout.cpp -lfmt
+build modbus_registers_fuzzer "$src"/fuzz/modbus_registers_fuzzer.cpp "$src"/devices/modbus/register_levels.cpp -lfmt
 status=0
-for kind in dxf map bundle csv_trace hid_report; do
+for kind in dxf map bundle csv_trace hid_report modbus_registers; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true

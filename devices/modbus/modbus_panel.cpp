@@ -8,6 +8,7 @@
 #include <chrono>
 #include <thread>
 
+#include "devices/modbus/register_levels.hpp"
 #include "model/error.hpp"
 
 namespace walk::devices {
@@ -112,17 +113,13 @@ bool ModbusDimmerPanel::step() {
     }
     DimmerReading r;
     r.time = clock_();
-    r.levels.resize(config_.registers.size());
-    for (std::size_t ch = 0; ch < r.levels.size(); ++ch) {
-      const std::uint16_t v =
-          one_request ? raw[static_cast<std::size_t>(config_.registers[ch] - first_)] : raw[ch];
-      if (v > config_.full_scale) {
-        faults_.garbage(r.time, fmt::format("channel {} (register {}) = {} is above full scale {:g}", ch,
-                                            config_.registers[ch], v, config_.full_scale));
-        return false;  // keep the last good levels; the panel answers, so no reconnect
-      }
-      r.levels[ch] = v / config_.full_scale;
+    RegisterLevels decoded =
+        decode_register_levels(config_.registers, first_, one_request, raw, config_.full_scale);
+    if (!decoded.garbage.empty()) {
+      faults_.garbage(r.time, decoded.garbage);
+      return false;  // keep the last good levels; the panel answers, so no reconnect
     }
+    r.levels = std::move(decoded.levels);
     faults_.good(r.time);
     std::lock_guard lock(mutex_);
     latest_ = std::move(r);
