@@ -27,7 +27,7 @@ build() {  # name sources...: rebuilt only when a source is newer than the binar
   local name=$1
   shift
   local stale=0
-  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp "$src"/devices/*/*.hpp; do
+  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp "$src"/devices/*/*.hpp "$src"/compiler/scene/*.hpp; do
     [ -f "$f" ] && [ "$f" -nt "$out/$name" ] && stale=1
   done
   [ -x "$out/$name" ] && [ $stale = 0 ] && return 0
@@ -39,9 +39,14 @@ build map_fuzzer "$src"/fuzz/map_fuzzer.cpp "${map[@]}" "${common[@]}"
 build bundle_fuzzer "$src"/fuzz/bundle_fuzzer.cpp "$src"/model/bundle.cpp "${common[@]}" -lz
 build csv_trace_fuzzer "$src"/fuzz/csv_trace_fuzzer.cpp "$src"/devices/mock/csv_trace.cpp "${common[@]}"
 build hid_report_fuzzer "$src"/fuzz/hid_report_fuzzer.cpp "$src"/devices/hid/report_layout.cpp -lfmt
+# -DNDEBUG as the shipped (RelWithDebInfo) build: toml++'s internal debug asserts fire on inputs its parser
+# then rejects with a located error (a key starting with '='), which is what `walk` does and reports.
+build scene_toml_fuzzer -DNDEBUG "$src"/fuzz/scene_toml_fuzzer.cpp "$src"/compiler/scene/{scene_config,toml_access,units}.cpp \
+  "$src"/compiler/visibility/visibility_config.cpp \
+  "${common[@]}" -ltomlplusplus -lspdlog -lfmt
 build modbus_registers_fuzzer "$src"/fuzz/modbus_registers_fuzzer.cpp "$src"/devices/modbus/register_levels.cpp -lfmt
 status=0
-for kind in dxf map bundle csv_trace hid_report modbus_registers; do
+for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
