@@ -1,10 +1,10 @@
 // Dimmer levels from raw Modbus registers, with the degenerate reads a panel can produce.
+#include "devices/modbus/register_levels.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <vector>
-
-#include "devices/modbus/register_levels.hpp"
 
 namespace walk::devices {
 namespace {
