@@ -299,9 +299,8 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
       return poly.role == model::Role::Luminaire ? 0.0 : config.lighting.grid;
     };
     std::size_t coarse_fallbacks = 0;
-    std::size_t coarse_unrepaired = 0;
-    std::vector<const model::Polygon*>
-        emitted;  // the model polygon of each bundle polygon  // coarse forms drawn without their seam repair
+    std::size_t coarse_unrepaired = 0;           // coarse forms drawn without their seam repair
+    std::vector<const model::Polygon*> emitted;  // the model polygon of each bundle polygon
     auto emit = [&](const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh,
                     const PolygonMesh& coarse) {
       const double cell_size = dice_size(poly);

@@ -140,14 +140,17 @@ AlbedoMaps::~AlbedoMaps() {
   glDeleteTextures(1, &array_);
 }
 
-void AlbedoMaps::bind(GLuint program) const {
+void AlbedoMaps::point_samplers(GLuint program) {
+  glUniform1i(glGetUniformLocation(program, "u_texture_maps"), kTextureMapsUnit);
+  glUniform1i(glGetUniformLocation(program, "u_albedo_maps"), kAlbedoArrayUnit);
+}
+
+void AlbedoMaps::bind() const {
   glActiveTexture(GL_TEXTURE0 + kTextureMapsUnit);
   glBindTexture(GL_TEXTURE_BUFFER, maps_texture_);
   glActiveTexture(GL_TEXTURE0 + kAlbedoArrayUnit);
   glBindTexture(GL_TEXTURE_2D_ARRAY, array_);
   glActiveTexture(GL_TEXTURE0);
-  glUniform1i(glGetUniformLocation(program, "u_texture_maps"), kTextureMapsUnit);
-  glUniform1i(glGetUniformLocation(program, "u_albedo_maps"), kAlbedoArrayUnit);
 }
 
 void AlbedoMaps::unbind() {

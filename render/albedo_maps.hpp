@@ -33,10 +33,12 @@ class AlbedoMaps {
   AlbedoMaps(const AlbedoMaps&) = delete;
   AlbedoMaps& operator=(const AlbedoMaps&) = delete;
 
-  // Binds both textures to their units and points `program`'s samplers at them.
-  void bind(GLuint program) const;
+  // Points a program's two samplers at the maps' units: once per program, which keeps them. Call with the
+  // program in use.
+  static void point_samplers(GLuint program);
+  // Binds both textures to their units for this frame.
+  void bind() const;
   static void unbind();
-  [[nodiscard]] int layer_size() const { return size_; }
 
  private:
   GLuint array_ = 0, maps_buffer_ = 0, maps_texture_ = 0;

@@ -367,7 +367,12 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.polygon_buffer);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
-  if (!bundle.textures().empty()) r.albedo_maps.emplace(bundle);
+  if (!bundle.textures().empty()) {
+    r.albedo_maps.emplace(bundle);
+    glUseProgram(r.full_pass.program.id());
+    AlbedoMaps::point_samplers(r.full_pass.program.id());
+    glUseProgram(0);
+  }
   check_gl("uploading the bundle's buffers");
 }
 
@@ -514,7 +519,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
     if (pass.u_polygon_light >= 0) glUniform1i(pass.u_polygon_light, 1);
     glActiveTexture(GL_TEXTURE0);
-    if (r.albedo_maps && r.pass == &r.full_pass) r.albedo_maps->bind(pass.program.id());
+    if (r.albedo_maps && r.pass == &r.full_pass) r.albedo_maps->bind();
     const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao : r.vao;
     glBindVertexArray(scene_vao);
     glUniform1f(pass.u_opacity, 1.0f);
@@ -581,9 +586,18 @@ void Renderer::Impl::update_polygon_mix() {
 }
 
 void Renderer::Impl::make_shaded_program() {
-  if (!shaded_program)
-    shaded_program.emplace("subdivided", scene_source(bundle, kShadedVertexShader, true).c_str(),
-                           scene_source(bundle, kTonemapFragmentShader, false).c_str());
+  if (shaded_program) return;
+  shaded_program.emplace("subdivided", scene_source(bundle, kShadedVertexShader, true).c_str(),
+                         scene_source(bundle, kTonemapFragmentShader, false).c_str());
+  if (!albedo_maps) return;
+  // Set once, kept by the program: its samplers, and the maps at full weight, since subdivided quads are
+  // drawn only in still frames, with the patches. The caller's program is restored.
+  GLint caller = 0;
+  glGetIntegerv(GL_CURRENT_PROGRAM, &caller);
+  glUseProgram(shaded_program->id());
+  AlbedoMaps::point_samplers(shaded_program->id());
+  glUniform1f(glGetUniformLocation(shaded_program->id(), "u_patch_weight"), 1.0f);
+  glUseProgram(GLuint(caller));
 }
 
 // Leaves the scene program bound, as the caller had it.
@@ -595,11 +609,7 @@ void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
                      &view_projection_matrix[0][0]);
   glUniform1f(shaded_program->uniform("u_inv_exposure"), exposure > 0.0f ? 1.0f / exposure : 1.0f);
   glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
-  if (albedo_maps) {
-    albedo_maps->bind(shaded_program->id());
-    // Subdivided quads are drawn only in still frames, with the patches: maps at full weight.
-    glUniform1f(glGetUniformLocation(shaded_program->id(), "u_patch_weight"), 1.0f);
-  }
+  if (albedo_maps) albedo_maps->bind();
   glBindVertexArray(shaded_vao_id);
   glDrawArrays(GL_TRIANGLES, 0, count);
   glUseProgram(pass->program.id());

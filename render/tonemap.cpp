@@ -1,7 +1,8 @@
 #include "render/tonemap.hpp"
 
-#include <cmath>
 #include <string>
+
+#include "model/srgb.hpp"
 
 namespace walk::render {
 
@@ -36,10 +37,7 @@ void main() {
 
 std::array<float, 256> srgb_decode_table() {
   std::array<float, 256> table{};
-  for (int i = 0; i < 256; ++i) {
-    const double c = i / 255.0;
-    table[std::size_t(i)] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-  }
+  for (std::size_t i = 0; i < table.size(); ++i) table[i] = float(model::srgb_decode_table()[i]);
   return table;
 }
 

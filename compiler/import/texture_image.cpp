@@ -15,33 +15,15 @@
 // clang-format on
 
 #include "model/error.hpp"
+#include "model/srgb.hpp"
 
 namespace walk::compiler {
 namespace {
 
-// The sRGB curve both ways, the decode as a table (256 entries), the encode exact: used once per texel.
-const std::array<double, 256>& srgb_to_linear() {
-  static const std::array<double, 256> table = [] {
-    std::array<double, 256> t{};
-    for (int i = 0; i < 256; ++i) {
-      const double c = i / 255.0;
-      t[std::size_t(i)] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-    }
-    return t;
-  }();
-  return table;
-}
-
-std::uint8_t linear_to_srgb(double c) {
-  c = std::clamp(c, 0.0, 1.0);
-  const double s = c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-  return static_cast<std::uint8_t>(std::lround(s * 255.0));
-}
-
 // One halving step of a side longer than kMaxTextureSide: each texel the mean of up to 2x2 in linear light
 // (alpha averaged as it is).
 void halve(model::Texture& t) {
-  const auto& lin = srgb_to_linear();
+  const auto& lin = model::srgb_decode_table();
   const std::uint32_t w = std::max(1u, t.width / 2), h = std::max(1u, t.height / 2);
   const std::uint32_t sx = t.width > 1 ? 2 : 1, sy = t.height > 1 ? 2 : 1;
   std::vector<std::uint8_t> out(std::size_t(w) * h * 4);
@@ -56,7 +38,7 @@ void halve(model::Texture& t) {
         }
       const double n = double(sx * sy);
       std::uint8_t* o = &out[(std::size_t(y) * w + x) * 4];
-      for (int c = 0; c < 3; ++c) o[c] = linear_to_srgb(sum[c] / n);
+      for (int c = 0; c < 3; ++c) o[c] = model::srgb_encode_byte(sum[c] / n);
       o[3] = static_cast<std::uint8_t>(std::lround(sum[3] / n));
     }
   t.rgba = std::move(out);
@@ -137,7 +119,7 @@ model::Texture texture_from_rgba(std::vector<std::uint8_t> rgba, std::uint32_t w
     std::swap_ranges(rgba.begin() + std::ptrdiff_t(y * row), rgba.begin() + std::ptrdiff_t((y + 1) * row),
                      rgba.begin() + std::ptrdiff_t((height - 1 - y) * row));
   t.rgba = std::move(rgba);
-  const auto& lin = srgb_to_linear();
+  const auto& lin = model::srgb_decode_table();
   model::Rgb sum(0.0);
   for (std::size_t i = 0; i + 3 < t.rgba.size(); i += 4)
     sum += model::Rgb(lin[t.rgba[i]], lin[t.rgba[i + 1]], lin[t.rgba[i + 2]]);

@@ -11,6 +11,7 @@
 
 #include "../compiler/texture_files.hpp"
 #include "compiler/pipeline.hpp"
+#include "model/srgb.hpp"
 #include "render_test_support.hpp"
 
 namespace walk::render::test {
@@ -24,8 +25,7 @@ constexpr std::uint8_t kDark = 64, kBright = 192;  // sRGB bytes of the checkerb
 constexpr double kRatioTolerance = 0.1;
 
 double linear(std::uint8_t byte) {
-  const double c = byte / 255.0;
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  return model::srgb_decode_table()[byte];
 }
 
 // A 4 x 4 x 3 m room, faces inward, z up, a 1 m square lamp under the ceiling. Walls and floor in material
