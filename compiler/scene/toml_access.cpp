@@ -1,7 +1,5 @@
 #include "compiler/scene/toml_access.hpp"
 
-#include <fmt/format.h>
-
 #include <fstream>
 #include <sstream>
 
@@ -119,20 +117,6 @@ toml::table parse_toml_file(const std::string& path, std::string* text) {
   buffer << in.rdbuf();
   const std::string content = buffer.str();
   if (text) *text = content;
-  // toml++ 3.3 reaches an unreachable branch (undefined behaviour) when it tests a code point in
-  // U+FB26..U+FEFE for whitespace (found by fuzz/scene_toml_fuzzer): such characters are refused here.
-  std::size_t line = 1;
-  for (std::size_t i = 0; i + 2 < content.size(); ++i) {
-    const auto b0 = static_cast<unsigned char>(content[i]);
-    if (b0 == '\n') ++line;
-    if (b0 != 0xEF) continue;
-    const auto b1 = static_cast<unsigned char>(content[i + 1]),
-               b2 = static_cast<unsigned char>(content[i + 2]);
-    const unsigned cp = (0xFu << 12) | ((b1 & 0x3Fu) << 6) | (b2 & 0x3Fu);
-    if ((b1 & 0xC0) == 0x80 && (b2 & 0xC0) == 0x80 && cp >= 0xFB26 && cp <= 0xFEFE)
-      throw Error(located(path, line, fmt::format("character U+{:04X} is not accepted in a config", cp),
-                          "remove it (the TOML reader cannot test it safely)"));
-  }
   try {
     return toml::parse(content, path);
   } catch (const toml::parse_error& e) {
