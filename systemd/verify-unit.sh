@@ -2,7 +2,7 @@
 # Checks walkd.service and walkd.sysusers the way systemd will read them. `systemd-analyze verify` prints
 # warnings (unknown keys, bad values) yet exits 0, so ANY output counts as failure here.
 # The unit is verified inside a temporary root holding the real system units (for sysinit.target and
-# friends), this unit at /etc/systemd/system and walkd at /usr/local/bin, so ExecStart is checked as installed.
+# friends), this unit at /etc/systemd/system and walkd at /usr/bin, so ExecStart is checked as installed.
 # Usage: verify-unit.sh [path/to/built/walkd|""] [drop-in.conf]
 #   without walkd, a stand-in executable is used; a drop-in (walkd --print-unit-dropin) is verified with it.
 set -eu
@@ -10,7 +10,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(mktemp -d)
 trap 'rm -rf "$root"' EXIT INT TERM
 
-mkdir -p "$root/usr/local/bin" "$root/etc/systemd/system" "$root/usr/lib/systemd" "$root/usr/lib/sysusers.d"
+mkdir -p "$root/usr/bin" "$root/etc/systemd/system" "$root/usr/lib/systemd" "$root/usr/lib/sysusers.d"
 cp -r /usr/lib/systemd/system "$root/usr/lib/systemd/"
 cp "$here/walkd.service" "$root/etc/systemd/system/walkd.service"
 cp "$here/walkd.sysusers" "$root/usr/lib/sysusers.d/walkd.conf"
@@ -19,12 +19,11 @@ if [ -n "${2:-}" ]; then
   cp "$2" "$root/etc/systemd/system/walkd.service.d/devices.conf"
 fi
 if [ -n "${1:-}" ]; then
-  cp "$1" "$root/usr/local/bin/walkd"
+  cp "$1" "$root/usr/bin/walkd"
 else
-  printf '#!/bin/sh\nexit 0\n' > "$root/usr/local/bin/walkd"
+  printf '#!/bin/sh\nexit 0\n' > "$root/usr/bin/walkd"
 fi
-chmod 755 "$root/usr/local/bin/walkd"
-mkdir -p "$root/usr/bin"
+chmod 755 "$root/usr/bin/walkd"
 # ExecReload uses procps' /usr/bin/kill; slim images may lack it, and only its path matters here.
 if [ -x /usr/bin/kill ]; then cp /usr/bin/kill "$root/usr/bin/kill"; else printf '#!/bin/sh\n' > "$root/usr/bin/kill"; fi
 chmod 755 "$root/usr/bin/kill"
@@ -41,7 +40,8 @@ check() {  # check NAME COMMAND...: fails on a non-zero exit or on any output
     echo "ok   $name"
   fi
 }
-check "systemd-analyze verify walkd.service" systemd-analyze verify --root="$root" walkd.service
+# --man=no: the Documentation= man page is installed by the package, not here (check-package.sh checks it).
+check "systemd-analyze verify walkd.service" systemd-analyze verify --man=no --root="$root" walkd.service
 # sysusers logs what it would create on stderr: accept exactly that, and require the walkd user.
 if ! out=$(systemd-sysusers --root="$root" --dry-run 2>&1) ||
   echo "$out" | grep -qvE "^(Creating (group|user) 'walkd'|Would write /etc/)" ||
