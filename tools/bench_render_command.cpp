@@ -14,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "common/progress.hpp"
 #include "compiler/pipeline.hpp"
 #include "model/bundle.hpp"
 #include "model/error.hpp"
@@ -172,6 +173,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
     backend->make_current();
     render::Renderer renderer(*bundle);
     const auto walk = scripted_walk(*bundle, o.frames);
+    Progress progress("bench render " + scene, 0, "frames");
     std::cerr << "backend " << backend->name() << ", " << bundle->polygons().size() << " polygons, "
               << bundle->cells().size() << " cells, " << bundle->circuits().size() << " circuits\n";
     summary.triangles = bundle->indices().size() / 3;
@@ -194,6 +196,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
       for (const auto& v : walk) {
         const auto t0 = Clock::now();
         renderer.draw(v, width, height);
+        progress.advance();
         glFinish();
         times.push_back(ms_since(t0));
         polygons += renderer.last_stats().polygons_drawn;
@@ -294,6 +297,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
       for (std::size_t i = 0, k = 0; i < walk.size(); i += kLevelViewStride, ++k) {
         const auto t0 = Clock::now();
         renderer.draw(walk[i], width, height, level.options);
+        progress.advance();
         glFinish();
         t.push_back(ms_since(t0));
         triangles_sum += renderer.last_stats().triangles_drawn;
@@ -321,6 +325,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
         for (int i = 0; i < 30; ++i) {
           const auto t0 = Clock::now();
           renderer.draw(view, width, height, {.patch_weight = 0.0f, .lod_pixels = lod});
+          progress.advance();
           glFinish();
           t.push_back(ms_since(t0));
         }

@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "common/progress.hpp"
 #include "model/error.hpp"
 #include "model/version.hpp"
 #include "tools/commands.hpp"
@@ -14,6 +15,12 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("walk ") + walk::version());
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log each stage as it runs");
+  std::string progress = "auto";
+  app.add_option(
+         "--progress", progress,
+         "Progress of long work: bar (with rate and ETA), log (a line every 5 s), none; auto is bar on a "
+         "terminal, log otherwise and under systemd")
+      ->check(CLI::IsMember({"auto", "bar", "log", "none"}));
   int exit_code = 0;
   walk::tools::add_compile_command(app, exit_code);
   walk::tools::add_inspect_command(app, exit_code);
@@ -26,8 +33,12 @@ int main(int argc, char** argv) {
   walk::tools::add_bench_rays_command(*bench, exit_code);
   walk::tools::add_bench_render_command(*bench, exit_code);
   walk::tools::add_bench_cells_command(*bench, exit_code);
-  app.parse_complete_callback(
-      [&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::warn); });
+  app.parse_complete_callback([&] {
+    spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::warn);
+    walk::ProgressStyle style = walk::ProgressStyle::Auto;
+    walk::parse_progress_style(progress, style);  // checked by IsMember above
+    walk::set_progress_style(style);
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/progress.hpp"
 #include "compiler/partition/portals.hpp"
 #include "compiler/visibility/compute_cells.hpp"
 #include "compiler/visibility/verify_visibility.hpp"
@@ -93,7 +94,9 @@ int verify(const VerifyArgs& args) {
   std::vector<std::string> missed_at;
   std::size_t portal_eyes = 0;
   std::size_t off_walk = 0;
+  Progress progress("verify: cell views", part.cells.size(), "cells");
   for (std::uint32_t c = 0; c < part.cells.size(); ++c) {
+    progress.advance();
     // Off the walk (only the outside reaches it): no viewer stands there and the renderer draws everything.
     if (!keep_images && (b->cells()[c].flags & model::kCellOutside)) {
       ++off_walk;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "common/progress.hpp"
 #include "compiler/visibility/parallel_for.hpp"
 #include "model/model.hpp"
 
@@ -103,8 +104,11 @@ LodCounts simplify_clusters(model::BundleContents& out, unsigned threads) {
   // Levels are of the coarse form, the one drawn while moving.
   if (out.clusters.empty() || out.coarse_ranges.size() != out.polygons.size()) return counts;
   std::vector<ClusterLevels> levels(out.clusters.size());
-  parallel_for(out.clusters.size(), threads,
-               [&](std::size_t k) { levels[k] = simplify_one(out, out.clusters[k]); });
+  Progress progress("lod", out.clusters.size(), "clusters");
+  parallel_for(out.clusters.size(), threads, [&](std::size_t k) {
+    levels[k] = simplify_one(out, out.clusters[k]);
+    progress.advance();
+  });
   counts.clusters = out.clusters.size();
   out.lod_ranges.reserve(out.clusters.size() * model::kLodLevels);
   for (const auto& c : levels) {

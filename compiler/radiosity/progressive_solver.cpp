@@ -1,5 +1,7 @@
 #include "compiler/radiosity/progressive_solver.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -8,6 +10,7 @@
 #include <numbers>
 #include <thread>
 
+#include "common/progress.hpp"
 #include "compiler/radiosity/sampling.hpp"
 #include "compiler/raycast/ray_caster.hpp"
 
@@ -204,6 +207,9 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   }
 
   const double stop = options.residual * stats.emitted;
+  // Progress is how far the unshot power has come down towards the residual, on a log scale: each round
+  // removes a similar share of what is left, so this fraction grows about evenly with time.
+  Progress progress("light", 0, "rounds");
   for (std::uint64_t round = 1;; ++round) {
     double total_unshot = 0.0, largest = 0.0;
     for (std::size_t i = 0; i < P; ++i) {
@@ -212,6 +218,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
       largest = std::max(largest, patch_scalar[i]);
     }
     stats.unshot = total_unshot;
+    if (stats.emitted > 0 && total_unshot > 0 && options.residual > 0 && options.residual < 1)
+      progress.set_fraction(std::log(total_unshot / stats.emitted) / std::log(options.residual),
+                            fmt::format("unshot {:.2f}% (stops at {:.2f}%)",
+                                        100.0 * total_unshot / stats.emitted, 100.0 * options.residual));
     if (total_unshot <= stop || largest <= 0.0 || stats.rays >= options.max_rays) break;
     shots.clear();
     const double threshold = largest * options.batch_fraction;
@@ -235,6 +245,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     cast_round(round);
     for (const auto& s : shots) deposit(s);
     ++stats.rounds;
+    progress.advance();
     if (observer) observer(result);
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <iterator>
 
+#include "common/progress.hpp"
 #include "compiler/visibility/draw_order.hpp"
 #include "compiler/visibility/inside_flood.hpp"
 #include "compiler/visibility/parallel_for.hpp"
@@ -42,6 +43,7 @@ void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32
   ProofOptions cluster_options = options;
   cluster_options.max_pairs = std::min(config.proof_pairs, kClusterProofPairs);
   std::vector<ProofStats> stats(r.pvs.size());
+  Progress progress("cells: hidden proofs", r.pvs.size(), "cells");
   parallel_for(r.pvs.size(), config.threads, [&](std::size_t c) {
     const Box& box = r.partition.cells[c];
     std::vector<HiddenProver::Exit> exits;
@@ -55,6 +57,7 @@ void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32
       const ProofOptions& o = r.polygons[p].detail ? cluster_options : options;
       return prover.prove(box, exits, p, o, &stats[c]) == Verdict::Hidden;
     });
+    progress.advance();
   });
   for (const auto& s : stats) r.proofs.add(s);
 }

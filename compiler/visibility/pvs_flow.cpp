@@ -4,6 +4,7 @@
 #include <thread>
 #include <utility>
 
+#include "common/progress.hpp"
 #include "compiler/visibility/parallel_for.hpp"
 #include "compiler/visibility/vis_items.hpp"
 
@@ -379,7 +380,9 @@ FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
   std::vector<std::uint64_t> steps(n, 0), occluded(n, 0);
   std::vector<char> fell(n, 0), cell_fell(n, 0);
   const FlowGraph flow_graph(partition, graph, polygons, options.occluders);
+  Progress progress("cells: visibility flow", n, "cells");
   parallel_for(n, options.threads, [&](std::size_t c) {
+    progress.advance();
     if (!options.sources.empty() && !options.sources[c]) return;
     Flow flow(partition, flow_graph, polygons, options);
     bool fb = false, cell_fb = false;

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 
+#include "common/progress.hpp"
 #include "compiler/visibility/parallel_for.hpp"
 #include "compiler/visibility/trace_through_glass.hpp"
 
@@ -53,7 +54,9 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
   for (std::size_t i = 0; i < polygons.size(); ++i) glass[i] = polygons[i].glass;
   std::vector<std::vector<std::uint32_t>> out(part.cells.size());
   std::atomic<std::uint64_t> cast{0};
+  Progress progress("cells: sampled views", part.cells.size(), "cells");
   parallel_for(part.cells.size(), options.threads, [&](std::size_t c) {
+    progress.advance();
     if (!options.cells.empty() && !options.cells[c]) return;
     std::mt19937_64 rng(options.seed * 0x9E3779B97F4A7C15ull + c);
     std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -61,7 +61,7 @@ TEST(UvFit, SlantedQuadFarFromTheOriginKeepsItsPrecision) {
   const Vec3 a = glm::normalize(Vec3(1, 1, 0)), b(0, 0, 1);
   std::vector<Vec3> corners;
   std::vector<glm::dvec2> uvs;
-  for (const auto [x, y] : {std::pair{0.0, 0.0}, {4.0, 0.0}, {4.0, 2.5}, {0.0, 2.5}}) {
+  for (const auto& [x, y] : {std::pair{0.0, 0.0}, {4.0, 0.0}, {4.0, 2.5}, {0.0, 2.5}}) {
     corners.push_back(far + a * x + b * y);
     uvs.emplace_back(0.5 * x, 0.5 * y + 0.1);
   }
@@ -223,7 +223,7 @@ TEST_F(TexturedModel, GltfBaseColourTextureEmbeddedInTheFileIsDecoded) {
       << R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
       << R"({"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}]})";
   MeshStats stats;
-  const model::Model m = read_mesh((dir_ / "tri.gltf").string(), {1.0, true, 1.0}, &stats);
+  const model::Model m = read_mesh((dir_ / "tri.gltf").string(), {1.0, true, 1.0, {}}, &stats);
   EXPECT_EQ(stats.textures_loaded, 1u);
   EXPECT_EQ(stats.textures_missing, 0u);
   EXPECT_EQ(stats.faces_textured, 1u);
@@ -246,7 +246,7 @@ TEST_F(TexturedModel, UnreadableMapIsWarnedAboutAndTheColourUsed) {
   std::ofstream(dir_ / "q.obj") << "mtllib q.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
                                 << "usemtl tile\nf 1/1 2/2 3/3\n";
   MeshStats stats;
-  const model::Model m = read_mesh((dir_ / "q.obj").string(), {1.0, false, 1.0}, &stats);
+  const model::Model m = read_mesh((dir_ / "q.obj").string(), {1.0, false, 1.0, {}}, &stats);
   EXPECT_EQ(stats.textures_missing, 1u);
   EXPECT_TRUE(m.textures.empty());
   EXPECT_NEAR(m.materials.back().reflectance.b, 0.6, kFileColour);
