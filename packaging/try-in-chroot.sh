@@ -16,7 +16,7 @@ cp "$deb" "$root/tmp/"
 name=$(basename "$deb")
 in_root() { chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin DEBIAN_FRONTEND=noninteractive "$@"; }
 echo "== apt install ./$name"
-in_root apt-get install -y -q "/tmp/$name" systemd >"$root.apt.log" 2>&1 || { tail -30 "$root.apt.log"; exit 1; }
+in_root apt-get install -y -q "/tmp/$name" systemd man-db >"$root.apt.log" 2>&1 || { tail -30 "$root.apt.log"; exit 1; }
 grep -E "^(Setting up walkthrough|Unpacking walkthrough)" "$root.apt.log"
 echo "== installed programs"
 in_root walkd --version

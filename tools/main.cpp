@@ -11,6 +11,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"walk: compile, inspect and render Walkthrough bundles"};
   app.require_subcommand(1);
+  app.fallthrough();  // -v and --progress also after the subcommand: walk compile x.toml --progress log
   app.option_defaults()->always_capture_default();  // --help shows every option's default
   app.set_version_flag("--version", std::string("walk ") + walk::version());
   bool verbose = false;

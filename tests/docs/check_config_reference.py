@@ -51,7 +51,11 @@ def doc_sections(path):
 
 
 def nearest(keys, candidates):
-    return max(candidates, key=lambda c: len(keys & c[1]) - len(keys ^ c[1]))
+    """The candidate sharing most keys, or a placeholder when none shares any (a new table)."""
+    best = max(candidates, key=lambda c: len(keys & c[1]) - len(keys ^ c[1])) if candidates else None
+    if best is None or not keys & best[1]:
+        return ("(none: no section documents any of these keys; add one)", frozenset())
+    return best
 
 
 def check(source_dir, doc, files):
@@ -67,7 +71,7 @@ def check(source_dir, doc, files):
     for where, keys in lists:
         if keys in section_sets:
             continue
-        heading, documented = nearest(keys, sections) if sections else ("(none)", frozenset())
+        heading, documented = nearest(keys, sections)
         problems.append(
             f"{where}: keys accepted but not documented in {doc} section '{heading}': "
             f"{sorted(keys - documented) or '-'}; documented there but not accepted: {sorted(documented - keys) or '-'}")
