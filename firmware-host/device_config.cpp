@@ -28,6 +28,7 @@ devices::HidField hid_field(const Section& f) {
   h.name = *name;
   h.offset = static_cast<std::size_t>(f.integer("offset", 0, 0, 4095));
   h.size = static_cast<std::size_t>(f.integer("size", 1, 1, 4));
+  if (h.size == 3) f.fail("size", "must be 1, 2 or 4 bytes");
   h.is_signed = f.boolean("signed", false);
   h.big_endian = f.boolean("big_endian", false);
   const std::string unit = f.string("unit").value_or("si");
@@ -44,6 +45,7 @@ devices::HidReportLayout hid_layout(const Section& s) {
   s.only({"id", "length", "fields"});
   devices::HidReportLayout l;
   if (s.raw().get("id")) l.report_id = byte_value(s, "id", 0);
+  if (!s.raw().get("length")) s.fail("", "missing key 'length' (bytes in the report, the id byte included)");
   l.length = static_cast<std::size_t>(s.integer("length", 0, 1, 4096));
   const toml::node* n = s.raw().get("fields");
   const toml::array* arr = n ? n->as_array() : nullptr;

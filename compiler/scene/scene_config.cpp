@@ -192,6 +192,14 @@ void read_materials(const TomlTable& root, SceneConfig& cfg) {
   }
 }
 
+// A panel's width runs along x projected into its plane, or along y when the panel faces along x: any
+// normal gives a flat rectangle facing it (x alone made a panel facing along x collapse to a line).
+model::Vec3 panel_width_axis(const model::Vec3& normal) {
+  constexpr double kFacesAlongX = 0.999;  // |cos| of the angle between normal and x beyond which y is used
+  const model::Vec3 along = std::abs(normal.x) > kFacesAlongX ? model::Vec3(0, 1, 0) : model::Vec3(1, 0, 0);
+  return glm::normalize(along - glm::dot(along, normal) * normal);
+}
+
 void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
   const auto lum = root.table("luminaires");
   if (!lum) return;
@@ -208,6 +216,8 @@ void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
     p.power = positive(*pg, "power", p.power);
     p.colour = rgb01(*pg, "colour", p.colour);
     p.drop = pg->number("drop").value_or(p.drop);
+    if (!(p.drop >= 0))
+      pg->fail("drop", "must be 0 or more (metres below the ceiling; less puts the panel above it)");
     if (pg->has("exclude_groups")) p.exclude_groups = compile_regex(*pg, "exclude_groups");
   }
   for (const auto& t : lum->array_of_tables("panel")) {
@@ -219,9 +229,12 @@ void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
     l.position = model::Vec3((*pos)[0], (*pos)[1], (*pos)[2]) * cfg.metres_per_unit;
     if (const auto n = t.numbers("normal", 3)) l.normal = {(*n)[0], (*n)[1], (*n)[2]};
     if (glm::dot(l.normal, l.normal) < 1e-12) t.fail("normal", "must not be zero");
+    l.normal = glm::normalize(l.normal);
+    l.u_axis = panel_width_axis(l.normal);
     if (const auto size = t.numbers("size", 2)) {
       l.width = (*size)[0];
       l.height = (*size)[1];
+      if (!(l.width > 0 && l.height > 0)) t.fail("size", "both sides must be greater than 0");
     }
     l.power = rgb01(t, "colour", {1, 1, 1}) * positive(t, "power", 60.0);
     cfg.luminaires.push_back(l);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -222,6 +223,31 @@ TEST_F(SceneConfigTest, ShippedScenesLoad) {
     EXPECT_TRUE(c.panels.enabled);
     EXPECT_FALSE(c.rules.empty());
   }
+}
+
+TEST_F(SceneConfigTest, PanelsFacingAnyWayAreFlatRectanglesFacingTheirNormal) {
+  // Along x (where the width axis used to collapse), tilted, and straight down.
+  const auto cfg =
+      load_scene_config(write("[model]\nfile = \"a.obj\"\n"
+                              "[[luminaires.panel]]\nposition = [0, 0, 2]\nnormal = [-1, 0, 0]\n"
+                              "[[luminaires.panel]]\nposition = [0, 0, 2]\nnormal = [1, 0, -1]\n"
+                              "[[luminaires.panel]]\nposition = [0, 0, 2]\nnormal = [0, 0, -3]\n"));
+  ASSERT_EQ(cfg.luminaires.size(), 3u);
+  for (const auto& l : cfg.luminaires) {
+    EXPECT_NEAR(glm::length(l.normal), 1.0, 1e-12);
+    EXPECT_NEAR(glm::length(l.u_axis), 1.0, 1e-12);
+    EXPECT_NEAR(glm::dot(l.u_axis, l.normal), 0.0, 1e-12);  // width lies in the panel's plane
+  }
+  EXPECT_NEAR(cfg.luminaires[2].u_axis.x, 1.0, 1e-12);  // a ceiling panel keeps its width along x
+}
+
+TEST_F(SceneConfigTest, PanelSizesAndDropsThatMakeNoPanelAreRefused) {
+  const std::string flat =
+      error_of("[model]\nfile = \"a.obj\"\n[[luminaires.panel]]\nposition = [0, 0, 2]\nsize = [0.6, 0]\n");
+  EXPECT_NE(flat.find("luminaires.panel[0].size"), std::string::npos) << flat;
+  EXPECT_NE(flat.find(":5"), std::string::npos) << flat;
+  const std::string above = error_of("[model]\nfile = \"a.obj\"\n[luminaires.per_group]\ndrop = -0.1\n");
+  EXPECT_NE(above.find("luminaires.per_group.drop"), std::string::npos) << above;
 }
 
 }  // namespace

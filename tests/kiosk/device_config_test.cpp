@@ -89,6 +89,17 @@ function = "input"
   EXPECT_TRUE(m.input_registers);
 }
 
+TEST_F(DeviceConfigTest, ReportLayoutsSayWhatIsMissingOrImpossible) {
+  const std::string no_length = error(
+      "[devices.treadmill]\nbackend = \"hid\"\npath = \"/dev/x\"\n"
+      "[devices.treadmill.report]\nfields = [{ name = \"speed\", size = 2 }]\n");
+  EXPECT_NE(no_length.find("devices.treadmill.report: missing key 'length'"), std::string::npos) << no_length;
+  const std::string three = error(
+      "[devices.treadmill]\nbackend = \"hid\"\npath = \"/dev/x\"\n"
+      "[devices.treadmill.report]\nlength = 4\nfields = [{ name = \"speed\", size = 3 }]\n");
+  EXPECT_NE(three.find("fields[0].size: must be 1, 2 or 4 bytes"), std::string::npos) << three;
+}
+
 TEST_F(DeviceConfigTest, MistakesNameTheKeyAndLine) {
   EXPECT_NE(error("[devices.dimmer_panel]\nbackend = \"hid\"\npath = \"/dev/x\"\n")
                 .find("devices.dimmer_panel.backend"),
