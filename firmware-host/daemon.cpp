@@ -127,7 +127,13 @@ void Daemon::poll_devices(double now) {
     if (auto r = devices_.head_tracker->poll(now)) {  // stale: keep looking where the head last was
       yaw_ = r->yaw;
       pitch_ = r->pitch;
+      head_live_ = true;
+      head_position_.reset();
+      if (r->has_position) head_position_ = glm::dvec3(r->x, r->y, r->z);
       stamp(*devices_.head_tracker, 1, r->time);
+    } else {
+      head_live_ = false;  // screen mode: the eye glides back to the nominal position
+      head_position_.reset();
     }
   if (devices_.dimmer_panel)
     if (auto r = devices_.dimmer_panel->poll(now)) {  // the panel keeps its last good levels itself
@@ -146,6 +152,7 @@ void Daemon::poll_devices(double now) {
 void Daemon::return_to_start() {
   navigator_.return_to_start();
   heading_ = config_.start.heading;
+  head_steering_.reset();
   ++summary_.returns_to_start;
 }
 
@@ -205,16 +212,27 @@ void Daemon::frame(double now, double dt) {
   poll_devices(now);
   const double speed = speed_, steering = steering_, yaw = yaw_;
 
-  // The walker goes where the body (start heading + treadmill steering) and the head point together.
-  heading_ = config_.start.heading + steering + yaw;
-  navigator_.walk(speed, heading_, dt);
+  render::View view;
+  if (config_.display.mode == "hmd") {
+    // A head-mounted display: the walker goes where the body (start heading + treadmill steering) and the
+    // head point together, and the view turns with the head.
+    heading_ = config_.start.heading + steering + yaw;
+    navigator_.walk(speed, heading_, dt);
+    view.eye = navigator_.feet() + glm::dvec3(0, 0, config_.walker.eye_height);
+    view.forward = {std::cos(heading_) * std::cos(pitch_), std::sin(heading_) * std::cos(pitch_),
+                    std::sin(pitch_)};
+    view.fov_y_degrees = config_.display.fov_y_degrees;
+  } else {
+    // A fixed screen is a window: head yaw never turns the picture (only, if configured, the walk, as an
+    // eased turn rate beyond a dead zone); the eye's position shapes the view through the screen.
+    head_steering_.update(head_live_ ? std::optional<double>(yaw) : std::nullopt, dt, config_.steering);
+    heading_ = config_.start.heading + steering + head_steering_.turned();
+    navigator_.walk(speed, heading_, dt);
+    head_coupling_.update(head_position_, dt, config_.display.tracking_ease);
+    view = screen_view(config_, navigator_.feet(), heading_, head_coupling_.eye_offset());
+  }
   track_visits();
 
-  render::View view;
-  view.eye = navigator_.feet() + glm::dvec3(0, 0, config_.walker.eye_height);
-  view.forward = {std::cos(heading_) * std::cos(pitch_), std::sin(heading_) * std::cos(pitch_),
-                  std::sin(pitch_)};
-  view.fov_y_degrees = config_.display.fov_y_degrees;
   renderer_.set_dimmers(levels_);
   const double t0 = wall_seconds();
   const bool drew = renderer_.draw(view);

@@ -12,6 +12,7 @@
 #include "firmware-host/clock.hpp"
 #include "firmware-host/device_factory.hpp"
 #include "firmware-host/frame_renderer.hpp"
+#include "firmware-host/head_coupling.hpp"
 #include "firmware-host/kiosk_config.hpp"
 #include "firmware-host/navigation.hpp"
 #include "firmware-host/sd_notify.hpp"
@@ -75,9 +76,13 @@ class Daemon {
   Navigator navigator_;
   SystemdNotifier notifier_;
 
-  std::vector<float> levels_;                        // per circuit
-  std::vector<std::uint32_t> channel_circuit_;       // per dimmer channel
-  double heading_ = 0.0, pitch_ = 0.0;               // of the gaze, radians
+  std::vector<float> levels_;                   // per circuit
+  std::vector<std::uint32_t> channel_circuit_;  // per dimmer channel
+  double heading_ = 0.0, pitch_ = 0.0;          // of the gaze, radians
+  HeadCoupling head_coupling_;                  // screen mode: the eye's offset, eased
+  HeadSteering head_steering_;                  // screen mode: head yaw as a turn rate
+  std::optional<glm::dvec3> head_position_;     // live tracker position (tracker frame), if any
+  bool head_live_ = false;
   double speed_ = 0.0, steering_ = 0.0, yaw_ = 0.0;  // last good device values (stale treadmill: speed 0)
   bool next_building_ = false;
   std::atomic<bool>* reload_flag_ = nullptr;

@@ -2,7 +2,9 @@
 
 #include <toml++/toml.h>
 
+#include <cmath>
 #include <filesystem>
+#include <glm/geometric.hpp>
 #include <numbers>
 
 #include "firmware-host/device_config.hpp"
@@ -19,6 +21,61 @@ constexpr double kDegrees = std::numbers::pi / 180.0;
 std::string resolve(const std::string& base_dir, const std::string& p) {
   if (p.empty() || fs::path(p).is_absolute()) return p;
   return (fs::path(base_dir) / p).lexically_normal().string();
+}
+
+// Corners measured with a tape: an upper_right this far (metres) from the rectangle's fourth corner is a
+// mistake in the numbers, not measuring error.
+constexpr double kCornerTolerance = 0.01;
+// The nominal eye must be at least this far in front of the screen (metres), or the view is degenerate.
+constexpr double kMinEyeToScreen = 0.05;
+
+glm::dvec3 point(const Section& s, const std::string& key) {
+  const toml::node* n = s.raw().get(key);
+  const toml::array* a = n ? n->as_array() : nullptr;
+  if (!a || a->size() != 3)
+    s.fail(key, "expected [x, y, z] in metres (tracker frame: x right, y forward, z up)");
+  glm::dvec3 p(0.0);
+  for (int i = 0; i < 3; ++i) {
+    const auto v = (*a)[std::size_t(i)].value<double>();
+    if (!v || !std::isfinite(*v) || std::abs(*v) > 100.0)
+      s.fail(key, "expected three numbers within 100 m of the tracker's origin");
+    p[i] = *v;
+  }
+  return p;
+}
+
+ScreenCorners read_screen(const Section& s) {
+  s.only({"lower_left", "lower_right", "upper_left", "upper_right"});
+  for (const char* key : {"lower_left", "lower_right", "upper_left"})
+    if (!s.raw().get(key))
+      s.fail("", std::string("missing key '") + key + "' (three corners define the screen)");
+  ScreenCorners c{point(s, "lower_left"), point(s, "lower_right"), point(s, "upper_left")};
+  const glm::dvec3 across = c.lower_right - c.lower_left, up = c.upper_left - c.lower_left;
+  const double w = glm::length(across), h = glm::length(up);
+  if (w < kCornerTolerance || h < kCornerTolerance)
+    s.fail("", "corners coincide: the screen has no width or height");
+  if (std::abs(glm::dot(across, up)) > 0.01 * w * h)
+    s.fail("upper_left",
+           "corners do not form a rectangle: lower_left->lower_right and lower_left->upper_left "
+           "must be at right angles");
+  if (s.raw().get("upper_right")) {
+    const glm::dvec3 expected = c.lower_right + up;
+    if (glm::length(point(s, "upper_right") - expected) > kCornerTolerance)
+      s.fail("upper_right",
+             "is not where the other three corners put it: the corners do not form a rectangle");
+  }
+  return c;
+}
+
+SteeringConfig read_steering(const Section& s) {
+  s.only({"head_turn", "dead_zone_deg", "turn_gain", "max_turn_deg_s", "ease_seconds"});
+  SteeringConfig c;
+  c.head_turn = s.boolean("head_turn", c.head_turn);
+  c.dead_zone = s.number("dead_zone_deg", c.dead_zone / kDegrees, 0.0, 90.0) * kDegrees;
+  c.turn_gain = s.number("turn_gain", c.turn_gain, 0.0, 10.0);
+  c.max_turn_rate = s.number("max_turn_deg_s", c.max_turn_rate / kDegrees, 1.0, 360.0) * kDegrees;
+  c.ease_seconds = s.number("ease_seconds", c.ease_seconds, 0.0, 10.0);
+  return c;
 }
 
 StartConfig read_start(const Section& start) {
@@ -48,8 +105,8 @@ KioskConfig load_kiosk_config(const std::string& path) {
   }
   const std::string dir = fs::path(path).parent_path().string();
   const Section top(root, path, "");
-  top.only(
-      {"bundle", "buildings", "display", "start", "walker", "devices", "dimmers", "simulation", "output"});
+  top.only({"bundle", "buildings", "display", "start", "walker", "steering", "devices", "dimmers",
+            "simulation", "output"});
 
   KioskConfig c;
   c.path = path;
@@ -74,8 +131,15 @@ KioskConfig load_kiosk_config(const std::string& path) {
   }
 
   if (auto s = top.table("display")) {
-    s->only({"backend", "width", "height", "fullscreen", "monitor", "drm_device", "fov_y_deg", "refine",
-             "target_hz"});
+    s->only({"mode", "screen", "nominal_eye", "tracking_ease", "backend", "width", "height", "fullscreen",
+             "monitor", "drm_device", "fov_y_deg", "refine", "target_hz"});
+    c.display.mode = s->string("mode").value_or(c.display.mode);
+    if (c.display.mode != "screen" && c.display.mode != "hmd")
+      s->fail("mode",
+              "unknown mode '" + c.display.mode + "' (screen: a fixed display; hmd: a head-mounted one)");
+    if (auto t = s->table("screen")) c.display.screen = read_screen(*t);
+    if (s->raw().get("nominal_eye")) c.display.nominal_eye = point(*s, "nominal_eye");
+    c.display.tracking_ease = s->number("tracking_ease", c.display.tracking_ease, 0.0, 10.0);
     c.display.backend = s->string("backend").value_or(c.display.backend);
     if (c.display.backend != "auto" && c.display.backend != "osmesa" && c.display.backend != "egl" &&
         c.display.backend != "glfw" && c.display.backend != "gbm")
@@ -100,6 +164,19 @@ KioskConfig load_kiosk_config(const std::string& path) {
     c.walker.step_height = s->number("step_height", c.walker.step_height, 0.0, 1.0);
     c.walker.head_clearance = s->number("head_clearance", c.walker.head_clearance, 0.0, 1.0);
     if (c.walker.step_height >= c.walker.eye_height) s->fail("step_height", "must be below eye_height");
+  }
+
+  if (auto s = top.table("steering")) c.steering = read_steering(*s);
+  if (c.display.mode == "screen" && c.display.screen) {
+    // The eye at rest must look at the screen's front: its normal (right x up) points at the viewer.
+    const ScreenCorners& sc = *c.display.screen;
+    const glm::dvec3 normal =
+        glm::normalize(glm::cross(sc.lower_right - sc.lower_left, sc.upper_left - sc.lower_left));
+    const glm::dvec3 eye = c.display.nominal_eye.value_or(glm::dvec3(0.0, 0.0, c.walker.eye_height));
+    if (glm::dot(eye - sc.lower_left, normal) < kMinEyeToScreen)
+      top.table("display")->fail("screen",
+                                 "the nominal eye is not in front of the screen (give the corners as "
+                                 "seen from the walker: lower_left on the left)");
   }
 
   if (auto s = top.table("devices")) {

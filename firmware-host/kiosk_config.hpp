@@ -2,6 +2,7 @@
 // The kiosk's TOML config: which bundle, which display, where the walker starts, which devices, how dimmer
 // channels map to circuits, simulation and output settings. Angles are degrees in the file, radians here;
 // relative paths are resolved against the config file's folder. Errors name the file, line and key.
+#include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,8 +13,18 @@
 
 namespace walk::kiosk {
 
+// A physical screen's corners in the tracker frame (metres; see firmware-host/head_coupling.hpp).
+struct ScreenCorners {
+  glm::dvec3 lower_left{0.0}, lower_right{0.0}, upper_left{0.0};
+};
+
 struct DisplayConfig {
-  std::string backend = "auto";  // auto | osmesa | egl | glfw | gbm
+  // screen: a fixed display seen as a window from the tracked eye; hmd: the view turns with the head.
+  std::string mode = "screen";
+  std::optional<ScreenCorners> screen;    // none: a nominal screen spanning fov_y_degrees (head_coupling)
+  std::optional<glm::dvec3> nominal_eye;  // tracker frame; none: (0, 0, walker eye height)
+  double tracking_ease = 0.5;             // seconds to glide to or from the nominal eye
+  std::string backend = "auto";           // auto | osmesa | egl | glfw | gbm
   int width = 1280;
   int height = 720;
   bool fullscreen = false;
@@ -32,6 +43,15 @@ struct StartConfig {
   std::optional<double> floor_z;  // world z of the floor to stand on ...
   std::optional<double> eye_z;    // ... or of the eye (floor = eye - eye height); neither: highest floor
   double heading = 0.0;           // radians, 0 = +x, counter-clockwise
+};
+
+// Walking direction in screen mode: the treadmill's steering, plus head yaw as a turn rate when head_turn.
+struct SteeringConfig {
+  bool head_turn = false;
+  double dead_zone = 0.26;      // radians of yaw that do not turn (about 15 degrees: glances)
+  double turn_gain = 1.0;       // radians per second of turn per radian of yaw beyond the dead zone
+  double max_turn_rate = 0.79;  // radians per second (about 45 degrees per second)
+  double ease_seconds = 0.4;    // time constant of the turn rate's easing
 };
 
 struct WalkerConfig {
@@ -79,6 +99,7 @@ struct KioskConfig {
   DisplayConfig display;
   StartConfig start;
   WalkerConfig walker;
+  SteeringConfig steering;
   DevicesConfig devices;
   std::vector<std::string> dimmer_circuits;  // channel i drives the circuit named dimmer_circuits[i]
   SimulationConfig simulation;

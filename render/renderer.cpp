@@ -168,7 +168,7 @@ struct Renderer::Impl {
   DrawList frame_list(std::uint32_t cell, const View& view, const glm::mat4& view_projection_matrix,
                       int full_height, bool coarse, float lod_pixels) {
     const Frustum frustum(view_projection_matrix);
-    const LodChoice lod{glm::vec3(view.eye), float(double(full_height) / glm::radians(view.fov_y_degrees)),
+    const LodChoice lod{glm::vec3(view.eye), float(double(full_height) / vertical_field_of_view(view)),
                         coarse ? lod_pixels : 0.0f};
     return list_for(cell, coarse, frustum_culling ? &frustum : nullptr,
                     lod.max_pixels > 0.0f ? &lod : nullptr);
@@ -258,7 +258,7 @@ void draw_batch(const DrawBatch& batch) {
 
 bool same_view(const View& a, const View& b) {
   return a.eye == b.eye && a.forward == b.forward && a.up == b.up && a.fov_y_degrees == b.fov_y_degrees &&
-         a.near_plane == b.near_plane && a.far_plane == b.far_plane;
+         a.near_plane == b.near_plane && a.far_plane == b.far_plane && a.screen == b.screen;
 }
 
 double milliseconds_since(std::chrono::steady_clock::time_point start) {

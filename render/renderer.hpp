@@ -16,6 +16,13 @@
 namespace walk::render {
 
 // A camera in the bundle's local coordinates (metres, z up).
+// A fixed physical screen in the same coordinates: the picture is the view through this rectangle from the
+// eye (head-coupled, off-axis perspective; Kooima 2008). Three corners; the fourth completes the rectangle.
+struct ScreenRect {
+  glm::dvec3 lower_left{0.0}, lower_right{0.0}, upper_left{0.0};
+  bool operator==(const ScreenRect&) const = default;
+};
+
 struct View {
   glm::dvec3 eye{0.0};
   glm::dvec3 forward{1.0, 0.0, 0.0};
@@ -23,6 +30,9 @@ struct View {
   double fov_y_degrees = 60.0;
   double near_plane = 0.05;
   double far_plane = 500.0;
+  // Set: the projection is the off-axis frustum from eye through the screen; forward, up and fov_y_degrees
+  // are then not used for it (forward still tells which way the walker faces).
+  std::optional<ScreenRect> screen;
 };
 
 // Top row first, RGBA8.

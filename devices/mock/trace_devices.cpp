@@ -40,10 +40,18 @@ std::optional<TreadmillReading> TraceTreadmill::poll(double now) {
 }
 
 TraceHeadTracker::TraceHeadTracker(const std::string& path)
-    : trace_(CsvTrace::load(path, {"yaw_deg"}, {"pitch_deg"})),
+    : trace_(CsvTrace::load(path, {"yaw_deg"}, {"pitch_deg", "x_m", "y_m", "z_m"})),
       yaw_(trace_.column("yaw_deg")),
-      pitch_(trace_.column("pitch_deg")) {
+      pitch_(trace_.column("pitch_deg")),
+      position_{trace_.column("x_m"), trace_.column("y_m"), trace_.column("z_m")} {
   if (pitch_ != CsvTrace::npos) check_range(trace_, pitch_, -90.0, 90.0, "pitch_deg");
+  const int given = int(position_[0] != CsvTrace::npos) + int(position_[1] != CsvTrace::npos) +
+                    int(position_[2] != CsvTrace::npos);
+  if (given != 0 && given != 3)
+    throw Error(located(path, 1, "head position needs all of x_m, y_m and z_m", "add the missing columns"));
+  // A head on a treadmill moves centimetres to decimetres from its rest position; metres are a unit mistake.
+  for (std::size_t c = 0; c < 3 && given == 3; ++c)
+    check_range(trace_, position_[c], -2.0, 2.0, trace_.columns()[position_[c]]);
 }
 
 std::optional<HeadReading> TraceHeadTracker::poll(double now) {
@@ -53,6 +61,12 @@ std::optional<HeadReading> TraceHeadTracker::poll(double now) {
   r.time = trace_.time(row);
   r.yaw = trace_.value(row, yaw_) * kDegrees;
   r.pitch = pitch_ == CsvTrace::npos ? 0.0 : trace_.value(row, pitch_) * kDegrees;
+  if (position_[0] != CsvTrace::npos) {
+    r.has_position = true;
+    r.x = trace_.value(row, position_[0]);
+    r.y = trace_.value(row, position_[1]);
+    r.z = trace_.value(row, position_[2]);
+  }
   return r;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Mock devices that replay recorded CSV traces: deterministic input for simulated runs and tests.
-// Columns: treadmill `time,speed[,steering_deg]`; head tracker `time,yaw_deg[,pitch_deg]`;
+// Columns: treadmill `time,speed[,steering_deg]`; head tracker `time,yaw_deg[,pitch_deg][,x_m,y_m,z_m]`
+// (position: the head's offset from rest in the tracker frame, metres);
 // dimmer panel `time,ch0,ch1,...` (levels 0..1); buttons `time,button` (button names as in config). Angles
 // are degrees in the file, radians in readings.
 #include <memory>
@@ -33,6 +34,7 @@ class TraceHeadTracker final : public HeadTracker {
  private:
   CsvTrace trace_;
   std::size_t yaw_, pitch_;
+  std::size_t position_[3];  // x_m, y_m, z_m: the head's offset from rest, tracker frame; npos if absent
 };
 
 class TraceDimmerPanel final : public DimmerPanel {

@@ -1,0 +1,192 @@
+// The big screen as a window: head yaw never turns the picture in screen mode, a lost tracker hands the eye
+// back to the nominal position without a jump, head yaw steers only as an eased rate beyond its dead zone,
+// the nominal screen shows what hmd mode shows at rest, and bad screens are refused naming the key.
+#include "firmware-host/head_coupling.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "firmware-host/daemon.hpp"
+#include "firmware-host/kiosk_config.hpp"
+#include "model/error.hpp"
+#include "render/camera.hpp"
+#include "tests/kiosk/fake_renderer.hpp"
+#include "tests/kiosk/test_bundle.hpp"
+
+namespace walk::kiosk {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+TEST(HeadCoupling, NominalScreenShowsWhatTheHeadMountedViewShowsAtRest) {
+  KioskConfig c;
+  c.display.width = 1280;
+  c.display.height = 720;
+  const glm::dvec3 feet(1.0, 2.0, 0.0);
+  const double heading = 0.7;
+  const render::View screen = screen_view(c, feet, heading, glm::dvec3(0.0));
+  render::View hmd;
+  hmd.eye = feet + glm::dvec3(0, 0, c.walker.eye_height);
+  hmd.forward = {std::cos(heading), std::sin(heading), 0.0};
+  hmd.fov_y_degrees = c.display.fov_y_degrees;
+  const glm::mat4 a = render::view_projection(screen, 1280.0 / 720.0);
+  const glm::mat4 b = render::view_projection(hmd, 1280.0 / 720.0);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) EXPECT_NEAR(a[i][j], b[i][j], 1e-5) << i << "," << j;
+  EXPECT_NEAR(render::vertical_field_of_view(screen), c.display.fov_y_degrees * kDeg, 1e-9);
+}
+
+TEST(HeadCoupling, LostTrackingGlidesBackToTheNominalEyeWithoutAJump) {
+  HeadCoupling h;
+  const double dt = 1.0 / 60.0, ease = 0.5;
+  const glm::dvec3 offset(0.12, -0.05, 0.03);
+  for (int i = 0; i < 60; ++i) h.update(offset, dt, ease);  // tracking for a second: fully coupled
+  EXPECT_NEAR(glm::length(h.eye_offset() - offset), 0.0, 1e-12);
+  const double max_step = glm::length(offset) * dt / ease + 1e-12;
+  glm::dvec3 previous = h.eye_offset();
+  int frames_to_nominal = 0;
+  while (glm::length(h.eye_offset()) > 0.0 && frames_to_nominal < 1000) {
+    h.update(std::nullopt, dt, ease);
+    EXPECT_LE(glm::length(h.eye_offset() - previous), max_step);
+    previous = h.eye_offset();
+    ++frames_to_nominal;
+  }
+  EXPECT_NEAR(frames_to_nominal, ease / dt, 1.0);
+  // Tracking comes back: the eye glides out to it the same way.
+  h.update(offset, dt, ease);
+  EXPECT_LE(glm::length(h.eye_offset()), max_step);
+}
+
+TEST(HeadSteering, GlancesDoNotTurnAndTurnsBeyondTheDeadZoneEaseIn) {
+  SteeringConfig c;
+  c.head_turn = true;
+  HeadSteering s;
+  const double dt = 1.0 / 60.0;
+  for (int i = 0; i < 120; ++i) s.update(c.dead_zone * 0.9, dt, c);  // a glance inside the dead zone
+  EXPECT_EQ(s.turned(), 0.0);
+  s.update(c.dead_zone + 20 * kDeg, dt, c);  // far beyond: the rate starts small...
+  EXPECT_GT(s.rate(), 0.0);
+  EXPECT_LT(s.rate(), 0.1 * c.max_turn_rate);
+  for (int i = 0; i < 600; ++i) s.update(c.dead_zone + 80 * kDeg, dt, c);  // ...and never passes the limit
+  EXPECT_NEAR(s.rate(), c.max_turn_rate, 1e-6);
+  s.update(-(c.dead_zone + 80 * kDeg), dt, c);  // looking the other way slows the turn, not flips it
+  EXPECT_GT(s.rate(), 0.0);
+  for (int i = 0; i < 600; ++i) s.update(std::nullopt, dt, c);  // tracker lost: the turn eases to a stop
+  EXPECT_NEAR(s.rate(), 0.0, 1e-6);
+  c.head_turn = false;
+  s.reset();
+  for (int i = 0; i < 60; ++i) s.update(80 * kDeg, dt, c);
+  EXPECT_EQ(s.turned(), 0.0);
+}
+
+class ScreenModeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("walk_screen_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    bundle_ = model::Bundle::open(testing::write_two_room_bundle((dir_ / "rooms.walk").string()));
+    config_.path = (dir_ / "kiosk.toml").string();
+    config_.bundle = (dir_ / "rooms.walk").string();
+    config_.start.x = 102.0;
+    config_.start.y = 202.0;
+    config_.start.floor_z = 10.0;
+    config_.simulation.frame_rate = 30.0;
+    config_.simulation.seconds = 3.0;
+    config_.output.folder = (dir_ / "out").string();
+    config_.devices.treadmill = DeviceConfig{"mock", write("t.csv", "time,speed\n0,0\n0.5,1.0\n2.5,0\n")};
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    const auto path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::vector<render::View> run_with_head(const std::string& trace) {
+    config_.devices.head_tracker = DeviceConfig{"mock", write("h.csv", trace)};
+    testing::FakeRenderer renderer;
+    std::atomic<bool> stop{false};
+    Daemon daemon(config_, *bundle_, renderer, open_devices(config_.devices));
+    daemon.run(stop);
+    return renderer.views;
+  }
+  fs::path dir_;
+  std::unique_ptr<model::Bundle> bundle_;
+  KioskConfig config_;
+};
+
+TEST_F(ScreenModeTest, HeadYawWithoutSteeringLeavesEveryFrameUnchanged) {
+  const auto still = run_with_head("time,yaw_deg,pitch_deg\n0,0,0\n");
+  const auto glance = run_with_head("time,yaw_deg,pitch_deg\n0,0,0\n0.2,30,10\n1.0,-30,-10\n2.0,30,0\n");
+  ASSERT_EQ(still.size(), glance.size());
+  ASSERT_EQ(still.size(), 90u);
+  for (std::size_t i = 0; i < still.size(); ++i) {
+    ASSERT_EQ(still[i].eye, glance[i].eye) << i;
+    ASSERT_TRUE(still[i].screen && glance[i].screen) << i;
+    ASSERT_EQ(*still[i].screen, *glance[i].screen) << i;
+  }
+  // In hmd mode the same glances turn the view (and the walk).
+  config_.display.mode = "hmd";
+  const auto hmd = run_with_head("time,yaw_deg,pitch_deg\n0,0,0\n0.2,30,10\n1.0,-30,-10\n2.0,30,0\n");
+  EXPECT_GT(glm::length(hmd[20].forward - still[20].forward), 0.3);
+}
+
+TEST_F(ScreenModeTest, HeadPositionMovesTheEyeBehindAFixedScreen) {
+  const auto rest = run_with_head("time,yaw_deg\n0,0\n");
+  // 10 cm to the right and 5 cm down, from the start: the eye glides there over tracking_ease, no jump.
+  const auto moved = run_with_head("time,yaw_deg,x_m,y_m,z_m\n0,0,0.1,0,-0.05\n");
+  ASSERT_EQ(rest.size(), moved.size());
+  // Standing still facing +x until 0.5 s: the walker's right is -y.
+  const glm::dvec3 shift = moved[14].eye - rest[14].eye;
+  EXPECT_NEAR(shift.x, 0.0, 1e-9);
+  EXPECT_NEAR(shift.y, -0.1, 1e-9);
+  EXPECT_NEAR(shift.z, -0.05, 1e-9);
+  const double first_step = glm::length(glm::dvec3(0.1, 0.0, -0.05)) / (config_.display.tracking_ease * 30.0);
+  EXPECT_LE(glm::length(moved[0].eye - rest[0].eye), first_step + 1e-9);
+  for (std::size_t i = 0; i < rest.size(); ++i) ASSERT_EQ(*rest[i].screen, *moved[i].screen) << i;
+}
+
+TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
+  const fs::path dir = fs::temp_directory_path() / "walk_screen_config";
+  fs::create_directories(dir);
+  auto error = [&](const std::string& display) {
+    const fs::path p = dir / "kiosk.toml";
+    std::ofstream(p) << "bundle = \"x.walk\"\n[start]\nx = 0\ny = 0\nfloor_z = 0\n" << display;
+    try {
+      (void)load_kiosk_config(p.string());
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string skew = error(
+      "[display.screen]\nlower_left = [-1, 1, 1]\nlower_right = [1, 1, 1]\nupper_left = [-0.5, 1, 2]\n");
+  EXPECT_NE(skew.find("display.screen.upper_left: corners do not form a rectangle"), std::string::npos)
+      << skew;
+  const std::string fourth = error(
+      "[display.screen]\nlower_left = [-1, 1, 1]\nlower_right = [1, 1, 1]\nupper_left = [-1, 1, 2]\n"
+      "upper_right = [1, 1.2, 2]\n");
+  EXPECT_NE(fourth.find("display.screen.upper_right"), std::string::npos) << fourth;
+  const std::string behind =
+      error("[display.screen]\nlower_left = [1, 1, 1]\nlower_right = [-1, 1, 1]\nupper_left = [1, 1, 2]\n");
+  EXPECT_NE(behind.find("display.screen: the nominal eye is not in front of the screen"), std::string::npos)
+      << behind;
+  const std::string missing = error("[display.screen]\nlower_left = [-1, 1, 1]\nupper_left = [-1, 1, 2]\n");
+  EXPECT_NE(missing.find("missing key 'lower_right'"), std::string::npos) << missing;
+  const std::string mode = error("[display]\nmode = \"cave\"\n");
+  EXPECT_NE(mode.find("display.mode: unknown mode 'cave'"), std::string::npos) << mode;
+  const std::string good = error(
+      "[display]\nmode = \"screen\"\nnominal_eye = [0, 0, 1.7]\n[display.screen]\nlower_left = [-1, 1, 1]\n"
+      "lower_right = [1, 1, 1]\nupper_left = [-1, 1, 2.125]\nupper_right = [1, 1, 2.125]\n");
+  EXPECT_EQ(good, "");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace walk::kiosk
