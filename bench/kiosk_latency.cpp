@@ -1,15 +1,19 @@
 // kiosk_latency: a simulated real-time kiosk run measuring device-to-frame latency, printed as CSV.
 //   kiosk_latency [--bundle house.walk] [--seconds 10] [--hz 60] [--width 640] [--height 360] [--backend
-//   osmesa]
+//   osmesa] [--stereo off|side_by_side] [--screens 1..3]
 // walkd's Daemon runs in real time on the GL renderer with: a HID treadmill and a HID head tracker fed raw
 // reports at 250 Hz through the HidSource seam (timestamped on arrival by the real reader threads), and a
 // Modbus TCP dimmer panel polled at 50 Hz against the panel simulator on 127.0.0.1, whose registers change
-// every 0.2 s. Latency = present() of the frame that used a reading - the reading's timestamp. Without
+// every 0.2 s. The head tracker reports yaw and position (a sway), so in screen mode (the default) every
+// frame's view moves with the head. --stereo and --screens draw two eyes and/or several screens of one
+// spanning output (three: a front wall and two side walls angled in), for their frame-time cost.
+// Latency = present() of the frame that used a reading - the reading's timestamp. Without
 // --bundle, the sample house is compiled first (config/scenes/house.toml).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
@@ -94,7 +98,8 @@ Stats stats(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string bundle_path, backend = "osmesa";
+  std::string bundle_path, backend = "osmesa", stereo = "off";
+  int screens = 1;
   double seconds = 10, hz = 60;
   int width = 640, height = 360;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -111,6 +116,10 @@ int main(int argc, char** argv) {
       height = std::stoi(v);
     else if (k == "--backend")
       backend = v;
+    else if (k == "--stereo")
+      stereo = v;
+    else if (k == "--screens")
+      screens = std::clamp(std::stoi(v), 1, 3);
     else {
       std::fprintf(stderr, "kiosk_latency: unknown option %s\n", k.c_str());
       return 2;
@@ -133,6 +142,17 @@ int main(int argc, char** argv) {
     config.output.folder = (std::filesystem::temp_directory_path() / "kiosk_latency_out").string();
     config.output.png_every = 0;
     config.devices = {};
+    config.display.stereo = stereo;
+    if (screens > 1) {
+      // Walls 1.6 x 0.9 m, 1 m ahead, the side ones turned 30 degrees in (tracker frame, metres).
+      const double z0 = 1.15, z1 = 2.05;
+      config.display.screens = {{{-0.8, 1.0, z0}, {0.8, 1.0, z0}, {-0.8, 1.0, z1}},
+                                {{-2.186, 0.2, z0}, {-0.8, 1.0, z0}, {-2.186, 0.2, z1}},
+                                {{0.8, 1.0, z0}, {2.186, 0.2, z0}, {0.8, 1.0, z1}}};
+      config.display.screens.resize(std::size_t(screens));
+      if (screens == 3)
+        std::swap(config.display.screens[0], config.display.screens[1]);  // left, front, right
+    }
 
     kiosk::DeviceSet set;
     devices::HidReportLayout tl;  // report 1: speed u16 mm/s
@@ -148,17 +168,26 @@ int main(int argc, char** argv) {
         tl, devices::FaultPolicy{});
     treadmill_reader->start(50);
     set.treadmill = std::make_unique<devices::HidTreadmill>(std::move(treadmill_reader));
-    devices::HidReportLayout hl;  // unnumbered: yaw s16 in milliradians
-    hl.length = 2;
-    hl.fields = {{"yaw", 0, 2, true, false, 0.001, 0.0, -3.2, 3.2}};
+    devices::HidReportLayout hl;  // unnumbered: yaw s16 in milliradians, then x, y, z s16 in millimetres
+    hl.length = 8;
+    hl.fields = {{"yaw", 0, 2, true, false, 0.001, 0.0, -3.2, 3.2},
+                 {"x", 2, 2, true, false, 0.001, 0.0, -0.5, 0.5},
+                 {"y", 4, 2, true, false, 0.001, 0.0, -0.5, 0.5},
+                 {"z", 6, 2, true, false, 0.001, 0.0, -0.5, 0.5}};
     auto head_reader = std::make_unique<devices::HidReader>(
         "head tracker (bench)",
         std::make_unique<FeedHid>(250.0,
                                   [](int i) {
-                                    const auto v = static_cast<std::int16_t>((i % 500) - 250);
-                                    return std::vector<std::uint8_t>{
-                                        static_cast<std::uint8_t>(v & 0xff),
-                                        static_cast<std::uint8_t>((v >> 8) & 0xff)};
+                                    // Yaw sweeps within the dead zone; the head sways 4 cm at 0.9 Hz.
+                                    const auto yaw = static_cast<std::int16_t>((i % 500) - 250);
+                                    const auto x = static_cast<std::int16_t>(40.0 * std::sin(i * 0.0226));
+                                    const auto z = static_cast<std::int16_t>(15.0 * std::sin(i * 0.0452));
+                                    std::vector<std::uint8_t> r;
+                                    for (const std::int16_t v : {yaw, x, std::int16_t(0), z}) {
+                                      r.push_back(static_cast<std::uint8_t>(v & 0xff));
+                                      r.push_back(static_cast<std::uint8_t>((v >> 8) & 0xff));
+                                    }
+                                    return r;
                                   }),
         hl, devices::FaultPolicy{});
     head_reader->start(50);
@@ -191,20 +220,24 @@ int main(int argc, char** argv) {
     std::printf("metric,samples,p50_ms,p99_ms,max_ms\n");
     const char* names[3] = {"reading_to_frame_treadmill_hid250", "reading_to_frame_head_hid250",
                             "reading_to_frame_panel_modbus50"};
-    std::vector<double> all;
+    // The daemon keeps latencies in bounded histograms (quantiles within about 2.3 %), as a kiosk does.
+    kiosk::LatencyHistogram all;
+    auto print_row = [](const char* name, const kiosk::LatencyHistogram& h) {
+      std::printf("%s,%llu,%.2f,%.2f,%.2f\n", name, static_cast<unsigned long long>(h.count()),
+                  h.quantile(0.5) * 1e3, h.quantile(0.99) * 1e3, h.max() * 1e3);
+    };
     for (std::size_t role = 0; role < 3; ++role) {
-      const auto& l = daemon.latencies(role);
-      all.insert(all.end(), l.begin(), l.end());
-      const Stats st = stats(l);
-      std::printf("%s,%zu,%.2f,%.2f,%.2f\n", names[role], st.n, st.p50, st.p99, st.max);
+      all.merge(daemon.latencies(role));
+      print_row(names[role], daemon.latencies(role));
     }
-    const Stats a = stats(all);
-    std::printf("reading_to_frame_all,%zu,%.2f,%.2f,%.2f\n", a.n, a.p50, a.p99, a.max);
+    print_row("reading_to_frame_all", all);
     const Stats rt = stats(modbus->round_trips());
     std::printf("modbus_tcp_poll_round_trip,%zu,%.3f,%.3f,%.3f\n", rt.n, rt.p50, rt.p99, rt.max);
-    std::printf("# %s %dx%d at %g Hz for %g s: %llu frames, %.1f fps inside draw+present, renderer %s\n",
-                bundle_path.c_str(), width, height, hz, seconds, static_cast<unsigned long long>(s.frames),
-                s.fps, s.renderer.c_str());
+    std::printf(
+        "# %s %dx%d at %g Hz for %g s, %s mode, stereo %s, %d screen(s): %llu frames, %.1f fps inside "
+        "draw+present (%.2f ms a frame), renderer %s\n",
+        bundle_path.c_str(), width, height, hz, seconds, config.display.mode.c_str(), stereo.c_str(), screens,
+        static_cast<unsigned long long>(s.frames), s.fps, 1e3 / std::max(s.fps, 1e-9), s.renderer.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "kiosk_latency: %s\n", e.what());
     return 1;

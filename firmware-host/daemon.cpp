@@ -213,6 +213,7 @@ void Daemon::frame(double now, double dt) {
   const double speed = speed_, steering = steering_, yaw = yaw_;
 
   render::View view;
+  std::vector<render::View> views;
   if (config_.display.mode == "hmd") {
     // A head-mounted display: the walker goes where the body (start heading + treadmill steering) and the
     // head point together, and the view turns with the head.
@@ -222,6 +223,7 @@ void Daemon::frame(double now, double dt) {
     view.forward = {std::cos(heading_) * std::cos(pitch_), std::sin(heading_) * std::cos(pitch_),
                     std::sin(pitch_)};
     view.fov_y_degrees = config_.display.fov_y_degrees;
+    views = stereo_pair(config_, view);
   } else {
     // A fixed screen is a window: head yaw never turns the picture (only, if configured, the walk, as an
     // eased turn rate beyond a dead zone); the eye's position shapes the view through the screen.
@@ -229,18 +231,19 @@ void Daemon::frame(double now, double dt) {
     heading_ = config_.start.heading + steering + head_steering_.turned();
     navigator_.walk(speed, heading_, dt);
     head_coupling_.update(head_position_, dt, config_.display.tracking_ease);
-    view = screen_view(config_, navigator_.feet(), heading_, head_coupling_.eye_offset());
+    views = screen_views(config_, navigator_.feet(), heading_, head_coupling_.eye_offset(),
+                         head_live_ ? yaw : 0.0);
   }
   track_visits();
 
   renderer_.set_dimmers(levels_);
   const double t0 = wall_seconds();
-  const bool drew = renderer_.draw(view);
+  const bool drew = views.size() == 1 ? renderer_.draw(views.front()) : renderer_.draw_views(views);
   renderer_.present(drew);
   summary_.frames_drawn += drew;
   const double shown = devices::monotonic_seconds();
   summary_.render_seconds += wall_seconds() - t0;
-  for (const auto& [role, t] : pending_stamps_) latencies_[role].push_back(shown - t);
+  for (const auto& [role, t] : pending_stamps_) latencies_[role].add(shown - t);
   pending_stamps_.clear();
   for (std::size_t i = 0; i < kRoles; ++i)
     if (const devices::Device* d = device(i); d && d->state() != devices::DeviceState::Live)
@@ -325,17 +328,13 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
       summary_.device_states.emplace_back(kRoleNames[i], devices::state_name(d->state()));
       summary_.device_faulty_frames.emplace_back(kRoleNames[i], faulty_frames_[i]);
     }
-  std::vector<double> sorted;
-  for (const auto& l : latencies_) sorted.insert(sorted.end(), l.begin(), l.end());
-  if (!sorted.empty()) {
-    std::sort(sorted.begin(), sorted.end());
-    auto at = [&](double q) {
-      return sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
-    };
-    summary_.latency_p50 = at(0.5);
-    summary_.latency_p99 = at(0.99);
-    summary_.latency_max = sorted.back();
-    summary_.latency_samples = sorted.size();
+  LatencyHistogram all;
+  for (const auto& l : latencies_) all.merge(l);
+  if (all.count()) {
+    summary_.latency_p50 = all.quantile(0.5);
+    summary_.latency_p99 = all.quantile(0.99);
+    summary_.latency_max = all.max();
+    summary_.latency_samples = all.count();
   }
   write_summary(config_.output.folder, summary_);
   spdlog::info(

@@ -14,6 +14,7 @@
 #include "firmware-host/frame_renderer.hpp"
 #include "firmware-host/head_coupling.hpp"
 #include "firmware-host/kiosk_config.hpp"
+#include "firmware-host/latency_histogram.hpp"
 #include "firmware-host/navigation.hpp"
 #include "firmware-host/sd_notify.hpp"
 #include "firmware-host/summary.hpp"
@@ -45,7 +46,7 @@ class Daemon {
   [[nodiscard]] const DeviceSet& devices() const { return devices_; }
   // Seconds from a hardware reading's timestamp to the present() of the frame that used it, per role
   // (0 treadmill, 1 head tracker, 2 dimmer panel).
-  [[nodiscard]] const std::vector<double>& latencies(std::size_t role) const { return latencies_[role]; }
+  [[nodiscard]] const LatencyHistogram& latencies(std::size_t role) const { return latencies_[role]; }
   // "treadmill live, head_tracker stale, ..." as the STATUS line shows it.
   [[nodiscard]] std::string device_status() const;
 
@@ -88,7 +89,7 @@ class Daemon {
   std::atomic<bool>* reload_flag_ = nullptr;
   std::function<KioskConfig()> reload_;
   std::vector<std::pair<int, double>> pending_stamps_;  // (role, hardware reading time) polled this frame
-  std::vector<double> latencies_[3];
+  LatencyHistogram latencies_[3];                       // bounded: a kiosk runs for months
   std::uint64_t faulty_frames_[kRoles] = {};
   double last_stamp_[3] = {-1.0, -1.0, -1.0};  // per treadmill, head tracker, panel: newest reading seen
   double next_png_ = 0.0;

@@ -1,5 +1,8 @@
 // Kept apart from the loop so code that never draws with GL (tests with a fake renderer) does not link GL.
 #include <glad/gl.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
 
 #include "firmware-host/frame_renderer.hpp"
 #include "render/backend/backend.hpp"
@@ -7,9 +10,12 @@
 namespace walk::kiosk {
 namespace {
 
+// One window, one or more views: stereo eyes and screens of a spanning output each get a renderer of their
+// own (its own refinement, accumulation and governor) presented into its part of the window.
 class GlFrameRenderer final : public FrameRenderer {
  public:
-  GlFrameRenderer(const model::Bundle& bundle, const DisplayConfig& display) : refine_(display.refine) {
+  GlFrameRenderer(const model::Bundle& bundle, const DisplayConfig& display)
+      : bundle_(bundle), refine_(display.refine), target_hz_(display.target_hz) {
     render::BackendOptions options;
     options.kind = render::parse_backend_kind(display.backend);
     options.width = display.width;
@@ -18,25 +24,66 @@ class GlFrameRenderer final : public FrameRenderer {
     options.monitor = display.monitor;
     options.drm_device = display.drm_device;
     options.title = "Walkthrough";
+    options.stereo = display.stereo == "quad_buffer";
     backend_ = render::Backend::create(options);
     backend_->make_current();
-    renderer_ = std::make_unique<render::Renderer>(bundle);
-    renderer_->set_present_to_window(backend_->has_window());
-    renderer_->set_target_rate(display.target_hz);
+    quad_requested_ = options.stereo;
+    quad_buffer_ = options.stereo && backend_->stereo();
+    if (options.stereo && !quad_buffer_)
+      spdlog::warn(
+          "display.stereo = \"quad_buffer\": the {} context has no left and right back buffers; "
+          "showing mono (use \"side_by_side\" for a 3D monitor or projector that takes it)",
+          backend_->name());
+    layout(1);
   }
   ~GlFrameRenderer() override {
     backend_->make_current();  // GL objects must be released with their context current
-    renderer_.reset();
+    renderers_.clear();
   }
   [[nodiscard]] const char* name() const override { return backend_->name(); }
-  void set_dimmers(std::span<const float> levels) override { renderer_->set_dimmers(levels); }
-  bool draw(const render::View& view) override {
-    if (refine_) return renderer_->refine(view, backend_->width(), backend_->height());
-    renderer_->draw(view, backend_->width(), backend_->height());
-    return true;
+  void set_dimmers(std::span<const float> levels) override {
+    levels_.assign(levels.begin(), levels.end());
+    for (auto& r : renderers_) r->set_dimmers(levels);
   }
-  void save_png(const std::string& path) override {
-    render::write_png(path, renderer_->read_pixels(backend_->width(), backend_->height()));
+  bool draw(const render::View& view) override { return draw_views(std::span<const render::View>(&view, 1)); }
+  bool draw_views(std::span<const render::View> views) override {
+    std::vector<render::View> chosen(views.begin(), views.end());
+    if (stereo_requested_fallback(chosen.size())) chosen = centres_of_pairs(chosen);
+    layout(chosen.size());
+    bool any = false;
+    std::vector<char> drew(chosen.size(), 0);
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      const Region& at = regions_[i];
+      if (refine_) {
+        drew[i] = renderers_[i]->refine(chosen[i], at.width, at.height);
+      } else {
+        renderers_[i]->draw(chosen[i], at.width, at.height);
+        drew[i] = 1;
+      }
+      any = any || drew[i];
+    }
+    // A swap leaves the back buffer undefined: parts whose view did not change are blitted again.
+    if (any && chosen.size() > 1)
+      for (std::size_t i = 0; i < chosen.size(); ++i)
+        if (!drew[i]) renderers_[i]->present_again();
+    return any;
+  }
+  void save_png(const std::string& path) override { render::write_png(path, capture()); }
+  // The whole window's picture: every part side by side (left eyes with quad-buffered stereo).
+  [[nodiscard]] render::Image capture() const override {
+    render::Image out;
+    out.width = backend_->width();
+    out.height = backend_->height();
+    out.rgba.assign(std::size_t(out.width) * out.height * 4, 0);
+    for (std::size_t i = 0; i < renderers_.size(); ++i) {
+      const Region& at = regions_[i];
+      if (at.present.buffer == render::WindowBuffer::BackRight) continue;  // the saved frame: left eyes
+      const render::Image part = renderers_[i]->read_pixels(at.width, at.height);
+      for (int y = 0; y < at.height; ++y)
+        std::copy_n(&part.rgba[std::size_t(y) * at.width * 4], std::size_t(at.width) * 4,
+                    &out.rgba[(std::size_t(y) * out.width + at.present.x) * 4]);
+    }
+    return out;
   }
   void present(bool drew) override {
     if (drew) backend_->present();  // an idle kiosk swaps nothing: the window keeps the converged picture
@@ -46,9 +93,64 @@ class GlFrameRenderer final : public FrameRenderer {
   [[nodiscard]] bool close_requested() override { return backend_->close_requested(); }
 
  private:
+  struct Region {
+    render::PresentRegion present;
+    int width = 0, height = 0;
+  };
+
+  // Quad-buffer stereo asked for but not granted: the daemon still sends eye pairs.
+  [[nodiscard]] bool stereo_requested_fallback(std::size_t views) const {
+    return !quad_buffer_ && quad_requested_ && views % 2 == 0;
+  }
+  static std::vector<render::View> centres_of_pairs(const std::vector<render::View>& pairs) {
+    std::vector<render::View> out;
+    for (std::size_t i = 0; i + 1 < pairs.size(); i += 2) {
+      render::View centre = pairs[i];
+      centre.eye = 0.5 * (pairs[i].eye + pairs[i + 1].eye);
+      out.push_back(centre);
+    }
+    return out;
+  }
+
+  // Regions side by side across the window: one per view, or with quad-buffered stereo one per eye pair,
+  // the left eye into the left back buffer and the right into the right.
+  void layout(std::size_t views) {
+    if (views == regions_.size() && backend_->width() == width_ && backend_->height() == height_) return;
+    width_ = backend_->width();
+    height_ = backend_->height();
+    const std::size_t columns = quad_buffer_ && views % 2 == 0 ? views / 2 : views;
+    const int column_width = width_ / int(columns);
+    regions_.assign(views, {});
+    for (std::size_t i = 0; i < views; ++i) {
+      const std::size_t column = columns == views ? i : i / 2;
+      Region& r = regions_[i];
+      r.present.x = int(column) * column_width;
+      r.width = column + 1 == columns ? width_ - r.present.x : column_width;
+      r.height = height_;
+      if (columns != views)
+        r.present.buffer = i % 2 ? render::WindowBuffer::BackRight : render::WindowBuffer::BackLeft;
+    }
+    while (renderers_.size() < views) renderers_.push_back(std::make_unique<render::Renderer>(bundle_));
+    renderers_.resize(views);
+    for (std::size_t i = 0; i < views; ++i) {
+      auto& r = *renderers_[i];
+      r.set_present_to_window(backend_->has_window());
+      r.set_present_region(regions_[i].present);
+      // Every view's share of the frame: the governor of each holds views x the frame rate.
+      r.set_target_rate(target_hz_ * double(views));
+      if (!levels_.empty()) r.set_dimmers(levels_);
+    }
+  }
+
+  const model::Bundle& bundle_;
   bool refine_;
+  double target_hz_;
+  bool quad_requested_ = false, quad_buffer_ = false;
   std::unique_ptr<render::Backend> backend_;
-  std::unique_ptr<render::Renderer> renderer_;
+  std::vector<std::unique_ptr<render::Renderer>> renderers_;
+  std::vector<Region> regions_;
+  std::vector<float> levels_;
+  int width_ = 0, height_ = 0;
 };
 
 }  // namespace

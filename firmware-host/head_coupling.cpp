@@ -30,6 +30,17 @@ glm::dvec3 nominal_eye(const KioskConfig& config) {
   return config.display.nominal_eye.value_or(glm::dvec3(0.0, 0.0, config.walker.eye_height));
 }
 
+std::vector<render::ScreenRect> screens_in_tracker_frame(const KioskConfig& config) {
+  std::vector<render::ScreenRect> out;
+  for (const auto& c : config.display.screens) out.push_back({c.lower_left, c.lower_right, c.upper_left});
+  if (out.empty()) out.push_back(screen_in_tracker_frame(config));
+  return out;
+}
+
+bool stereo(const KioskConfig& config) {
+  return config.display.stereo != "off";
+}
+
 render::ScreenRect screen_in_tracker_frame(const KioskConfig& config) {
   if (const auto& c = config.display.screen) return {c->lower_left, c->lower_right, c->upper_left};
   const glm::dvec3 eye = nominal_eye(config);
@@ -66,8 +77,8 @@ void HeadSteering::update(std::optional<double> yaw, double dt, const SteeringCo
 }
 
 render::View screen_view(const KioskConfig& config, const glm::dvec3& feet, double heading,
-                         const glm::dvec3& eye_offset) {
-  const render::ScreenRect s = screen_in_tracker_frame(config);
+                         const glm::dvec3& eye_offset, std::size_t screen) {
+  const render::ScreenRect s = screens_in_tracker_frame(config).at(screen);
   glm::dvec3 eye = nominal_eye(config) + glm::clamp(eye_offset, -kMaxHeadOffset, kMaxHeadOffset);
   const glm::dvec3 towards_viewer =
       glm::normalize(glm::cross(s.lower_right - s.lower_left, s.upper_left - s.lower_left));
@@ -81,6 +92,34 @@ render::View screen_view(const KioskConfig& config, const glm::dvec3& feet, doub
       render::ScreenRect{to_building(s.lower_left, feet, heading), to_building(s.lower_right, feet, heading),
                          to_building(s.upper_left, feet, heading)};
   return view;
+}
+
+std::vector<render::View> screen_views(const KioskConfig& config, const glm::dvec3& feet, double heading,
+                                       const glm::dvec3& eye_offset, double head_yaw) {
+  std::vector<render::View> views;
+  const std::size_t screens = screens_in_tracker_frame(config).size();
+  // The eyes sit either side of the head along its right axis: the tracker's x turned by the head's yaw.
+  const glm::dvec3 half_eyes =
+      0.5 * config.display.eye_separation * glm::dvec3(std::cos(head_yaw), std::sin(head_yaw), 0.0);
+  for (std::size_t s = 0; s < screens; ++s) {
+    if (!stereo(config)) {
+      views.push_back(screen_view(config, feet, heading, eye_offset, s));
+      continue;
+    }
+    views.push_back(screen_view(config, feet, heading, eye_offset - half_eyes, s));
+    views.push_back(screen_view(config, feet, heading, eye_offset + half_eyes, s));
+  }
+  return views;
+}
+
+std::vector<render::View> stereo_pair(const KioskConfig& config, const render::View& centre) {
+  if (!stereo(config)) return {centre};
+  glm::dvec3 right = glm::cross(centre.forward, centre.up);
+  right = glm::length(right) > 1e-9 ? glm::normalize(right) : glm::dvec3(1.0, 0.0, 0.0);
+  render::View left = centre, right_eye = centre;
+  left.eye -= 0.5 * config.display.eye_separation * right;
+  right_eye.eye += 0.5 * config.display.eye_separation * right;
+  return {left, right_eye};
 }
 
 }  // namespace walk::kiosk

@@ -8,6 +8,7 @@
 // its y axis along the walking heading.
 #include <glm/vec3.hpp>
 #include <optional>
+#include <vector>
 
 #include "firmware-host/kiosk_config.hpp"
 #include "render/renderer.hpp"
@@ -47,8 +48,20 @@ class HeadSteering {
   double turned_ = 0.0, rate_ = 0.0;
 };
 
+// Every screen in the tracker frame: [[display.screens]] in order, or the one screen above.
+[[nodiscard]] std::vector<render::ScreenRect> screens_in_tracker_frame(const KioskConfig& config);
+
+// Views per frame: for each screen, one eye (mono) or the left then the right eye (stereo), the eyes
+// eye_separation apart along the head's right axis (the tracker's x turned by the head's yaw).
+[[nodiscard]] std::vector<render::View> screen_views(const KioskConfig& config, const glm::dvec3& feet,
+                                                     double heading, const glm::dvec3& eye_offset,
+                                                     double head_yaw);
+// hmd mode: the one view, or its left and right eyes.
+[[nodiscard]] std::vector<render::View> stereo_pair(const KioskConfig& config, const render::View& centre);
+[[nodiscard]] bool stereo(const KioskConfig& config);
+
 // The view for a walker with feet at `feet` (local metres) facing `heading`, eye at nominal + offset.
 [[nodiscard]] render::View screen_view(const KioskConfig& config, const glm::dvec3& feet, double heading,
-                                       const glm::dvec3& eye_offset);
+                                       const glm::dvec3& eye_offset, std::size_t screen = 0);
 
 }  // namespace walk::kiosk

@@ -131,13 +131,31 @@ KioskConfig load_kiosk_config(const std::string& path) {
   }
 
   if (auto s = top.table("display")) {
-    s->only({"mode", "screen", "nominal_eye", "tracking_ease", "backend", "width", "height", "fullscreen",
-             "monitor", "drm_device", "fov_y_deg", "refine", "target_hz"});
+    s->only({"mode", "screen", "screens", "stereo", "eye_separation", "nominal_eye", "tracking_ease",
+             "backend", "width", "height", "fullscreen", "monitor", "drm_device", "fov_y_deg", "refine",
+             "target_hz"});
     c.display.mode = s->string("mode").value_or(c.display.mode);
     if (c.display.mode != "screen" && c.display.mode != "hmd")
       s->fail("mode",
               "unknown mode '" + c.display.mode + "' (screen: a fixed display; hmd: a head-mounted one)");
     if (auto t = s->table("screen")) c.display.screen = read_screen(*t);
+    if (const toml::node* n = s->raw().get("screens")) {
+      const toml::array* arr = n->as_array();
+      if (!arr || arr->empty()) s->fail("screens", "expected [[display.screens]] tables, each with corners");
+      if (c.display.screen)
+        s->fail("screens", "give either [display.screen] or [[display.screens]], not both");
+      for (std::size_t i = 0; i < arr->size(); ++i) {
+        const toml::table* t = arr->get(i)->as_table();
+        if (!t) s->fail("screens", "expected [[display.screens]] tables, each with corners");
+        c.display.screens.push_back(
+            read_screen(Section(*t, path, "display.screens[" + std::to_string(i) + "]")));
+      }
+      if (c.display.screens.size() > 8) s->fail("screens", "at most 8 screens");
+    }
+    c.display.stereo = s->string("stereo").value_or(c.display.stereo);
+    if (c.display.stereo != "off" && c.display.stereo != "side_by_side" && c.display.stereo != "quad_buffer")
+      s->fail("stereo", "unknown stereo '" + c.display.stereo + "' (off, side_by_side or quad_buffer)");
+    c.display.eye_separation = s->number("eye_separation", c.display.eye_separation, 0.0, 0.2);
     if (s->raw().get("nominal_eye")) c.display.nominal_eye = point(*s, "nominal_eye");
     c.display.tracking_ease = s->number("tracking_ease", c.display.tracking_ease, 0.0, 10.0);
     c.display.backend = s->string("backend").value_or(c.display.backend);
@@ -167,16 +185,21 @@ KioskConfig load_kiosk_config(const std::string& path) {
   }
 
   if (auto s = top.table("steering")) c.steering = read_steering(*s);
-  if (c.display.mode == "screen" && c.display.screen) {
-    // The eye at rest must look at the screen's front: its normal (right x up) points at the viewer.
-    const ScreenCorners& sc = *c.display.screen;
-    const glm::dvec3 normal =
-        glm::normalize(glm::cross(sc.lower_right - sc.lower_left, sc.upper_left - sc.lower_left));
-    const glm::dvec3 eye = c.display.nominal_eye.value_or(glm::dvec3(0.0, 0.0, c.walker.eye_height));
-    if (glm::dot(eye - sc.lower_left, normal) < kMinEyeToScreen)
-      top.table("display")->fail("screen",
-                                 "the nominal eye is not in front of the screen (give the corners as "
-                                 "seen from the walker: lower_left on the left)");
+  if (c.display.mode == "screen") {
+    // The eye at rest must look at each screen's front: its normal (right x up) points at the viewer.
+    std::vector<std::pair<ScreenCorners, std::string>> screens;
+    if (c.display.screen) screens.emplace_back(*c.display.screen, "screen");
+    for (std::size_t i = 0; i < c.display.screens.size(); ++i)
+      screens.emplace_back(c.display.screens[i], "screens[" + std::to_string(i) + "]");
+    for (const auto& [sc, key] : screens) {
+      const glm::dvec3 normal =
+          glm::normalize(glm::cross(sc.lower_right - sc.lower_left, sc.upper_left - sc.lower_left));
+      const glm::dvec3 eye = c.display.nominal_eye.value_or(glm::dvec3(0.0, 0.0, c.walker.eye_height));
+      if (glm::dot(eye - sc.lower_left, normal) < kMinEyeToScreen)
+        top.table("display")->fail(key,
+                                   "the nominal eye is not in front of the screen (give the corners as "
+                                   "seen from the walker: lower_left on the left)");
+    }
   }
 
   if (auto s = top.table("devices")) {

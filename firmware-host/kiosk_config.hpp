@@ -21,7 +21,12 @@ struct ScreenCorners {
 struct DisplayConfig {
   // screen: a fixed display seen as a window from the tracked eye; hmd: the view turns with the head.
   std::string mode = "screen";
-  std::optional<ScreenCorners> screen;    // none: a nominal screen spanning fov_y_degrees (head_coupling)
+  std::optional<ScreenCorners> screen;  // none: a nominal screen spanning fov_y_degrees (head_coupling)
+  // Several screens of one spanning output (e.g. three walls): each its own corners, side by side in the
+  // output in this order, all drawn from the same eye. Exclusive with `screen`.
+  std::vector<ScreenCorners> screens;
+  std::string stereo = "off";     // off | side_by_side | quad_buffer
+  double eye_separation = 0.064;  // metres between the eyes (an adult's average interpupillary distance)
   std::optional<glm::dvec3> nominal_eye;  // tracker frame; none: (0, 0, walker eye height)
   double tracking_ease = 0.5;             // seconds to glide to or from the nominal eye
   std::string backend = "auto";           // auto | osmesa | egl | glfw | gbm

@@ -92,6 +92,7 @@ struct Renderer::Impl {
   bool culling = true;
   float glass_opacity = 0.25f;
   bool present_to_window = false;
+  PresentRegion present_region;
   bool pvs_culling = true;
   bool frustum_culling = true;
   bool map_overlay = false;
@@ -423,6 +424,14 @@ const FrameGovernor& Renderer::governor() const {
 void Renderer::set_present_to_window(bool enabled) {
   impl_->present_to_window = enabled;
 }
+
+void Renderer::set_present_region(const PresentRegion& region) {
+  impl_->present_region = region;
+}
+
+void Renderer::present_again() const {
+  if (impl_->framebuffer.width() > 0) impl_->present(impl_->framebuffer.width(), impl_->framebuffer.height());
+}
 void Renderer::set_glass_opacity(float opacity) {
   if (impl_->glass_opacity != std::clamp(opacity, 0.0f, 1.0f)) impl_->restart = true;
   impl_->glass_opacity = std::clamp(opacity, 0.0f, 1.0f);
@@ -448,9 +457,14 @@ void Renderer::draw(const View& view, int width, int height, const DrawOptions& 
 
 void Renderer::Impl::present(int width, int height) const {
   if (!present_to_window) return;
+  const PresentRegion& at = present_region;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  if (at.buffer != WindowBuffer::Back)
+    glDrawBuffer(at.buffer == WindowBuffer::BackLeft ? GL_BACK_LEFT : GL_BACK_RIGHT);
+  glBlitFramebuffer(0, 0, width, height, at.x, at.y, at.x + width, at.y + height, GL_COLOR_BUFFER_BIT,
+                    GL_NEAREST);
+  if (at.buffer != WindowBuffer::Back) glDrawBuffer(GL_BACK);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl("presenting a frame");
 }

@@ -45,6 +45,12 @@ struct Image {
   }
 };
 
+enum class WindowBuffer { Back, BackLeft, BackRight };
+struct PresentRegion {
+  int x = 0, y = 0;  // lower-left corner in the window, pixels
+  WindowBuffer buffer = WindowBuffer::Back;
+};
+
 // How one draw() call draws; the defaults are the full-quality single frame.
 struct DrawOptions {
   float patch_weight = 1.0f;  // 0: flat polygon light (PLGT, the coarse display), 1: per-vertex patches
@@ -93,6 +99,12 @@ class Renderer {
   void set_backface_culling(bool enabled);
   // Blit each frame to the default framebuffer (a window); off by default. Use Backend::has_window().
   void set_present_to_window(bool enabled);
+  // Where in the window a frame goes: its lower-left corner, and for quad-buffered stereo the eye's back
+  // buffer. Several renderers share one window this way (stereo eyes, screens of one spanning output).
+  void set_present_region(const PresentRegion& region);
+  // Blits the last frame to its region again: after a swap, a region whose renderer did not draw would show
+  // whatever the back buffer held.
+  void present_again() const;
   // Glass polygons are blended over what is behind them with this opacity (0..1, default 0.25), in display
   // (sRGB) values: glass blocks walking, not seeing.
   // The paper's floor plan for navigation: a view from above of everything at or below the viewer's storey,

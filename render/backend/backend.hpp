@@ -21,6 +21,9 @@ struct BackendOptions {
   int monitor = 0;         // GLFW full screen and GBM: which connected display
   std::string drm_device;  // GBM: e.g. /dev/dri/card1; empty: the first card
   std::string title = "Walkthrough";
+  // Quad-buffered stereo (left and right back buffers): asked of GLFW; a context that cannot do it comes up
+  // mono and says so through stereo().
+  bool stereo = false;
 };
 
 class Backend {
@@ -35,6 +38,8 @@ class Backend {
   virtual void poll_events() {}
   // True when frames must be blitted to the default framebuffer to be seen (Renderer::set_present_to_window).
   [[nodiscard]] virtual bool has_window() const { return false; }
+  // Whether the window has left and right back buffers (BackendOptions::stereo granted).
+  [[nodiscard]] virtual bool stereo() const { return false; }
 
   static std::unique_ptr<Backend> create(const BackendOptions& options);
 };

@@ -54,7 +54,13 @@ class GLFWBackend final : public Backend {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_DEPTH_BITS, 0);  // depth lives in the renderer's FBO
-    window_ = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
+    if (options.stereo) {
+      glfwWindowHint(GLFW_STEREO, GLFW_TRUE);
+      window_ = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
+      glfwWindowHint(GLFW_STEREO, GLFW_FALSE);
+      stereo_ = window_ != nullptr;  // no quad-buffered visual: fall back to a mono window below
+    }
+    if (!window_) window_ = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
     if (!window_) {
       glfwTerminate();
       throw Error("glfw: could not create a " + std::to_string(width) + "x" + std::to_string(height) +
@@ -75,6 +81,7 @@ class GLFWBackend final : public Backend {
   }
 
   const char* name() const override { return "glfw"; }
+  bool stereo() const override { return stereo_; }
   int width() const override {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
@@ -96,6 +103,7 @@ class GLFWBackend final : public Backend {
 
  private:
   GLFWwindow* window_ = nullptr;
+  bool stereo_ = false;
 };
 
 }  // namespace

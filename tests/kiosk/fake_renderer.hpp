@@ -19,13 +19,18 @@ class FakeRenderer final : public FrameRenderer {
     if (on_draw) on_draw(views.size());
     return true;
   }
+  bool draw_views(std::span<const render::View> v) override {
+    view_sets.emplace_back(v.begin(), v.end());
+    return draw(v.front());
+  }
   void save_png(const std::string& path) override {
     std::ofstream(path) << "png";
     saved.push_back(path);
   }
 
   std::vector<float> levels;
-  std::vector<render::View> views;
+  std::vector<render::View> views;                   // the first view of every frame
+  std::vector<std::vector<render::View>> view_sets;  // every view of frames with more than one
   std::vector<std::string> saved;
   std::function<void(std::size_t frames)> on_draw;
 };

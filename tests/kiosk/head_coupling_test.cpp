@@ -152,6 +152,79 @@ TEST_F(ScreenModeTest, HeadPositionMovesTheEyeBehindAFixedScreen) {
   for (std::size_t i = 0; i < rest.size(); ++i) ASSERT_EQ(*rest[i].screen, *moved[i].screen) << i;
 }
 
+TEST_F(ScreenModeTest, StereoSendsBothEyesOfEveryScreenEyeSeparationApart) {
+  config_.display.stereo = "side_by_side";
+  config_.display.eye_separation = 0.07;
+  // Three screens of one spanning output: a front wall and two side walls angled in, 1 m ahead.
+  config_.display.screens = {{{-2.2, 0.2, 0.9}, {-0.6, 1.0, 0.9}, {-2.2, 0.2, 2.1}},
+                             {{-0.8, 1.0, 0.9}, {0.8, 1.0, 0.9}, {-0.8, 1.0, 2.1}},
+                             {{0.6, 1.0, 0.9}, {2.2, 0.2, 0.9}, {0.6, 1.0, 2.1}}};
+  config_.devices.head_tracker = DeviceConfig{"mock", write("h.csv", "time,yaw_deg\n0,0\n")};
+  testing::FakeRenderer renderer;
+  std::atomic<bool> stop{false};
+  Daemon daemon(config_, *bundle_, renderer, open_devices(config_.devices));
+  daemon.run(stop);
+  ASSERT_EQ(renderer.view_sets.size(), 90u);
+  for (const auto& set : renderer.view_sets) {
+    ASSERT_EQ(set.size(), 6u);  // screen-major, left eye then right
+    for (std::size_t s = 0; s < 3; ++s) {
+      const render::View& left = set[2 * s];
+      const render::View& right = set[2 * s + 1];
+      EXPECT_NEAR(glm::length(right.eye - left.eye), 0.07, 1e-9);
+      EXPECT_NEAR(glm::dot(right.eye - left.eye, glm::dvec3(0, 1, 0)), -0.07,
+                  1e-9);  // facing +x: right is -y
+      ASSERT_TRUE(left.screen && right.screen);
+      EXPECT_EQ(*left.screen, *right.screen);
+      EXPECT_EQ(left.eye, set[0].eye);  // the same eye for every screen
+    }
+  }
+}
+
+TEST_F(ScreenModeTest, SideBySideStereoDrawsEachEyeIntoItsHalfOfTheOutput) {
+  DisplayConfig display;
+  display.backend = "osmesa";
+  display.width = 320;
+  display.height = 120;
+  display.stereo = "side_by_side";
+  display.refine = false;
+  auto renderer = make_gl_renderer(*bundle_, display);
+  config_.display = display;
+  // The walker in room A facing the door (+x), the eyes 6.4 cm apart behind a nominal screen.
+  const auto views = screen_views(config_, glm::dvec3(2.0, 2.0, 0.0), 0.0, glm::dvec3(0.0), 0.0);
+  ASSERT_EQ(views.size(), 2u);
+  const float lit[] = {1.0f, 1.0f};
+  renderer->set_dimmers(lit);
+  ASSERT_TRUE(renderer->draw_views(views));
+  const render::Image both = renderer->capture();
+  ASSERT_EQ(both.width, 320);
+  ASSERT_EQ(both.height, 120);
+  // Each half is exactly what a mono output of that eye's size shows from that eye.
+  display.width = 160;
+  display.stereo = "off";
+  for (int eye = 0; eye < 2; ++eye) {
+    auto mono = make_gl_renderer(*bundle_, display);
+    mono->set_dimmers(lit);
+    ASSERT_TRUE(mono->draw(views[std::size_t(eye)]));
+    const render::Image alone = mono->capture();
+    ASSERT_EQ(alone.width, 160);
+    int differing = 0, drawn = 0;
+    for (int y = 0; y < 120; ++y)
+      for (int x = 0; x < 160; ++x) {
+        const std::uint8_t* half = both.pixel(x + 160 * eye, y);
+        const std::uint8_t* one = alone.pixel(x, y);
+        differing += half[0] != one[0] || half[1] != one[1] || half[2] != one[2];
+        drawn += int(one[0]) + one[1] + one[2] > 0;
+      }
+    EXPECT_EQ(differing, 0) << "eye " << eye;
+    EXPECT_GT(drawn, 160 * 120 / 10) << "eye " << eye << ": the room is drawn";
+  }
+  // And the eyes see from different places.
+  int parallax = 0;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x) parallax += both.pixel(x, y)[0] != both.pixel(x + 160, y)[0];
+  EXPECT_GT(parallax, 0);
+}
+
 TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
   const fs::path dir = fs::temp_directory_path() / "walk_screen_config";
   fs::create_directories(dir);
