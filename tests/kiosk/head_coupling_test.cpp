@@ -225,6 +225,28 @@ TEST_F(ScreenModeTest, SideBySideStereoDrawsEachEyeIntoItsHalfOfTheOutput) {
   EXPECT_GT(parallax, 0);
 }
 
+TEST_F(ScreenModeTest, ReloadAppliesNewScreenCornersFromTheNextFrame) {
+  config_.devices.head_tracker = DeviceConfig{"mock", write("h.csv", "time,yaw_deg\n0,0\n")};
+  testing::FakeRenderer renderer;
+  Daemon daemon(config_, *bundle_, renderer, open_devices(config_.devices));
+  KioskConfig next = config_;
+  next.display.screen = ScreenCorners{{-1.0, 2.0, 1.0}, {1.0, 2.0, 1.0}, {-1.0, 2.0, 2.2}};  // measured
+  std::atomic<bool> reload{false};
+  daemon.set_reloader(reload, [&] { return next; });
+  renderer.on_draw = [&](std::size_t frame) {
+    if (frame == 30) reload = true;
+  };
+  std::atomic<bool> stop{false};
+  daemon.run(stop);
+  ASSERT_EQ(renderer.views.size(), 90u);
+  const auto& before = *renderer.views[29].screen;
+  const auto& after = *renderer.views[31].screen;
+  // Facing +x: the nominal screen is 1 m ahead, the measured one 2 m; the walker moved < 0.1 m between.
+  EXPECT_NEAR(before.lower_left.x - renderer.views[29].eye.x, 1.0, 1e-9);
+  EXPECT_NEAR(after.lower_left.x - renderer.views[31].eye.x, 2.0, 1e-9);
+  EXPECT_NEAR(after.upper_left.z - after.lower_left.z, 1.2, 1e-9);
+}
+
 TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
   const fs::path dir = fs::temp_directory_path() / "walk_screen_config";
   fs::create_directories(dir);
