@@ -10,18 +10,19 @@
 namespace walk::kiosk {
 namespace {
 
-// One window, one or more views: stereo eyes and screens of a spanning output each get a renderer of their
-// own (its own refinement, accumulation and governor) presented into its part of the window.
-class GlFrameRenderer final : public FrameRenderer {
+// One output (a window, a full-screen monitor or an off-screen surface) showing one or more views side by
+// side: stereo eyes and screens of a spanning output each get a renderer of their own (its own refinement,
+// accumulation and governor) presented into its part of the output.
+class Output {
  public:
-  GlFrameRenderer(const model::Bundle& bundle, const DisplayConfig& display)
-      : bundle_(bundle), refine_(display.refine), target_hz_(display.target_hz) {
+  Output(const model::Bundle& bundle, const DisplayConfig& display, int monitor, double views_in_frame)
+      : bundle_(bundle), refine_(display.refine), target_hz_(display.target_hz * views_in_frame) {
     render::BackendOptions options;
     options.kind = render::parse_backend_kind(display.backend);
     options.width = display.width;
     options.height = display.height;
     options.fullscreen = display.fullscreen;
-    options.monitor = display.monitor;
+    options.monitor = monitor;
     options.drm_device = display.drm_device;
     options.title = "Walkthrough";
     options.stereo = display.stereo == "quad_buffer";
@@ -34,21 +35,27 @@ class GlFrameRenderer final : public FrameRenderer {
           "display.stereo = \"quad_buffer\": the {} context has no left and right back buffers; "
           "showing mono (use \"side_by_side\" for a 3D monitor or projector that takes it)",
           backend_->name());
-    layout(1);
   }
-  ~GlFrameRenderer() override {
-    backend_->make_current();  // GL objects must be released with their context current
-    renderers_.clear();
+  ~Output() {
+    try {
+      backend_->make_current();  // GL objects must be released with their context current
+      renderers_.clear();
+    } catch (const std::exception& e) {  // a context already gone: its objects went with it
+      spdlog::warn("closing an output: {}", e.what());
+    }
   }
-  [[nodiscard]] const char* name() const override { return backend_->name(); }
-  void set_dimmers(std::span<const float> levels) override {
+  [[nodiscard]] const render::Backend& backend() const { return *backend_; }
+  [[nodiscard]] bool close_requested() { return backend_->close_requested(); }
+  void set_dimmers(std::span<const float> levels) {
     levels_.assign(levels.begin(), levels.end());
+    backend_->make_current();
     for (auto& r : renderers_) r->set_dimmers(levels);
   }
-  bool draw(const render::View& view) override { return draw_views(std::span<const render::View>(&view, 1)); }
-  bool draw_views(std::span<const render::View> views) override {
+  bool draw(std::span<const render::View> views) {
+    backend_->make_current();
     std::vector<render::View> chosen(views.begin(), views.end());
-    if (stereo_requested_fallback(chosen.size())) chosen = centres_of_pairs(chosen);
+    // Quad-buffer stereo asked for but not granted: the eyes' pairs become their centres.
+    if (quad_requested_ && !quad_buffer_ && chosen.size() % 2 == 0) chosen = centres_of_pairs(chosen);
     layout(chosen.size());
     bool any = false;
     std::vector<char> drew(chosen.size(), 0);
@@ -66,18 +73,25 @@ class GlFrameRenderer final : public FrameRenderer {
     if (any && chosen.size() > 1)
       for (std::size_t i = 0; i < chosen.size(); ++i)
         if (!drew[i]) renderers_[i]->present_again();
+    drew_ = drew_ || any;
     return any;
   }
-  void save_png(const std::string& path) override { render::write_png(path, capture()); }
-  // The whole window's picture: every part side by side (left eyes with quad-buffered stereo).
-  [[nodiscard]] render::Image capture() const override {
+  void present() {
+    backend_->make_current();
+    if (drew_) backend_->present();  // an idle kiosk swaps nothing: the window keeps the converged picture
+    drew_ = false;
+    backend_->poll_events();
+  }
+  // The output's picture: every part side by side (left eyes with quad-buffered stereo).
+  [[nodiscard]] render::Image capture() const {
+    backend_->make_current();
     render::Image out;
     out.width = backend_->width();
     out.height = backend_->height();
     out.rgba.assign(std::size_t(out.width) * out.height * 4, 0);
     for (std::size_t i = 0; i < renderers_.size(); ++i) {
       const Region& at = regions_[i];
-      if (at.present.buffer == render::WindowBuffer::BackRight) continue;  // the saved frame: left eyes
+      if (at.present.buffer == render::WindowBuffer::BackRight) continue;
       const render::Image part = renderers_[i]->read_pixels(at.width, at.height);
       for (int y = 0; y < at.height; ++y)
         std::copy_n(&part.rgba[std::size_t(y) * at.width * 4], std::size_t(at.width) * 4,
@@ -85,12 +99,6 @@ class GlFrameRenderer final : public FrameRenderer {
     }
     return out;
   }
-  void present(bool drew) override {
-    if (drew) backend_->present();  // an idle kiosk swaps nothing: the window keeps the converged picture
-    backend_->poll_events();
-  }
-  [[nodiscard]] bool windowed() const override { return backend_->has_window(); }
-  [[nodiscard]] bool close_requested() override { return backend_->close_requested(); }
 
  private:
   struct Region {
@@ -98,10 +106,6 @@ class GlFrameRenderer final : public FrameRenderer {
     int width = 0, height = 0;
   };
 
-  // Quad-buffer stereo asked for but not granted: the daemon still sends eye pairs.
-  [[nodiscard]] bool stereo_requested_fallback(std::size_t views) const {
-    return !quad_buffer_ && quad_requested_ && views % 2 == 0;
-  }
   static std::vector<render::View> centres_of_pairs(const std::vector<render::View>& pairs) {
     std::vector<render::View> out;
     for (std::size_t i = 0; i + 1 < pairs.size(); i += 2) {
@@ -112,7 +116,7 @@ class GlFrameRenderer final : public FrameRenderer {
     return out;
   }
 
-  // Regions side by side across the window: one per view, or with quad-buffered stereo one per eye pair,
+  // Regions side by side across the output: one per view, or with quad-buffered stereo one per eye pair,
   // the left eye into the left back buffer and the right into the right.
   void layout(std::size_t views) {
     if (views == regions_.size() && backend_->width() == width_ && backend_->height() == height_) return;
@@ -136,7 +140,7 @@ class GlFrameRenderer final : public FrameRenderer {
       auto& r = *renderers_[i];
       r.set_present_to_window(backend_->has_window());
       r.set_present_region(regions_[i].present);
-      // Every view's share of the frame: the governor of each holds views x the frame rate.
+      // Every view's share of the frame: each governor holds (views in the whole frame) x the frame rate.
       r.set_target_rate(target_hz_ * double(views));
       if (!levels_.empty()) r.set_dimmers(levels_);
     }
@@ -144,13 +148,73 @@ class GlFrameRenderer final : public FrameRenderer {
 
   const model::Bundle& bundle_;
   bool refine_;
-  double target_hz_;
-  bool quad_requested_ = false, quad_buffer_ = false;
+  double target_hz_;  // the frame rate times the views drawn on the other outputs
+  bool quad_requested_ = false, quad_buffer_ = false, drew_ = false;
   std::unique_ptr<render::Backend> backend_;
   std::vector<std::unique_ptr<render::Renderer>> renderers_;
   std::vector<Region> regions_;
   std::vector<float> levels_;
   int width_ = 0, height_ = 0;
+};
+
+// The kiosk's display: one output (screens side by side in it when there are several), or with
+// display.outputs = "monitors" one output per screen on consecutive monitors from display.monitor.
+class GlFrameRenderer final : public FrameRenderer {
+ public:
+  GlFrameRenderer(const model::Bundle& bundle, const DisplayConfig& display) {
+    const std::size_t screens = std::max<std::size_t>(1, display.screens.size());
+    const bool per_monitor = display.outputs == "monitors" && screens > 1;
+    const std::size_t outputs = per_monitor ? screens : 1;
+    for (std::size_t i = 0; i < outputs; ++i)
+      outputs_.push_back(std::make_unique<Output>(bundle, display, display.monitor + int(i),
+                                                  per_monitor ? double(outputs) : 1.0));
+  }
+  ~GlFrameRenderer() override { outputs_.clear(); }
+  [[nodiscard]] const char* name() const override { return outputs_.front()->backend().name(); }
+  void set_dimmers(std::span<const float> levels) override {
+    for (auto& o : outputs_) o->set_dimmers(levels);
+  }
+  bool draw(const render::View& view) override { return draw_views(std::span<const render::View>(&view, 1)); }
+  // Views come screen-major; with one output per screen, each output takes its screen's views.
+  bool draw_views(std::span<const render::View> views) override {
+    if (outputs_.size() == 1 || views.size() % outputs_.size() != 0) return outputs_.front()->draw(views);
+    const std::size_t per_output = views.size() / outputs_.size();
+    bool any = false;
+    for (std::size_t i = 0; i < outputs_.size(); ++i)
+      any = outputs_[i]->draw(views.subspan(i * per_output, per_output)) || any;
+    return any;
+  }
+  void save_png(const std::string& path) override { render::write_png(path, capture()); }
+  // Every output's picture side by side.
+  [[nodiscard]] render::Image capture() const override {
+    if (outputs_.size() == 1) return outputs_.front()->capture();
+    std::vector<render::Image> parts;
+    render::Image out;
+    for (const auto& o : outputs_) {
+      parts.push_back(o->capture());
+      out.width += parts.back().width;
+      out.height = std::max(out.height, parts.back().height);
+    }
+    out.rgba.assign(std::size_t(out.width) * out.height * 4, 0);
+    int x0 = 0;
+    for (const auto& p : parts) {
+      for (int y = 0; y < p.height; ++y)
+        std::copy_n(&p.rgba[std::size_t(y) * p.width * 4], std::size_t(p.width) * 4,
+                    &out.rgba[(std::size_t(y) * out.width + x0) * 4]);
+      x0 += p.width;
+    }
+    return out;
+  }
+  void present(bool /*drew*/) override {
+    for (auto& o : outputs_) o->present();
+  }
+  [[nodiscard]] bool windowed() const override { return outputs_.front()->backend().has_window(); }
+  [[nodiscard]] bool close_requested() override {
+    return std::any_of(outputs_.begin(), outputs_.end(), [](auto& o) { return o->close_requested(); });
+  }
+
+ private:
+  std::vector<std::unique_ptr<Output>> outputs_;
 };
 
 }  // namespace

@@ -131,9 +131,9 @@ KioskConfig load_kiosk_config(const std::string& path) {
   }
 
   if (auto s = top.table("display")) {
-    s->only({"mode", "screen", "screens", "stereo", "eye_separation", "nominal_eye", "tracking_ease",
-             "backend", "width", "height", "fullscreen", "monitor", "drm_device", "fov_y_deg", "refine",
-             "target_hz"});
+    s->only({"mode", "screen", "screens", "outputs", "stereo", "eye_separation", "nominal_eye",
+             "tracking_ease", "backend", "width", "height", "fullscreen", "monitor", "drm_device",
+             "fov_y_deg", "refine", "target_hz"});
     c.display.mode = s->string("mode").value_or(c.display.mode);
     if (c.display.mode != "screen" && c.display.mode != "hmd")
       s->fail("mode",
@@ -152,6 +152,9 @@ KioskConfig load_kiosk_config(const std::string& path) {
       }
       if (c.display.screens.size() > 8) s->fail("screens", "at most 8 screens");
     }
+    c.display.outputs = s->string("outputs").value_or(c.display.outputs);
+    if (c.display.outputs != "span" && c.display.outputs != "monitors")
+      s->fail("outputs", "unknown outputs '" + c.display.outputs + "' (span or monitors)");
     c.display.stereo = s->string("stereo").value_or(c.display.stereo);
     if (c.display.stereo != "off" && c.display.stereo != "side_by_side" && c.display.stereo != "quad_buffer")
       s->fail("stereo", "unknown stereo '" + c.display.stereo + "' (off, side_by_side or quad_buffer)");
@@ -163,6 +166,12 @@ KioskConfig load_kiosk_config(const std::string& path) {
         c.display.backend != "glfw" && c.display.backend != "gbm")
       s->fail("backend", "unknown backend '" + c.display.backend + "' (auto, osmesa, egl, glfw or gbm)");
     c.display.monitor = s->integer("monitor", c.display.monitor, 0, 63);
+    // GBM scans out through one DRM master per device: one connector per walkd, so several outputs need
+    // GLFW's windows (each its own context) for now.
+    if (c.display.outputs == "monitors" && c.display.backend == "gbm")
+      s->fail("outputs",
+              "\"monitors\" needs backend = \"glfw\" (one GBM connector per walkd); or use "
+              "outputs = \"span\" with one output across the screens");
     c.display.drm_device = s->string("drm_device").value_or(c.display.drm_device);
     c.display.refine = s->boolean("refine", c.display.refine);
     c.display.target_hz = s->number("target_hz", c.display.target_hz, 1.0, 480.0);

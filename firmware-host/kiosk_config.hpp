@@ -25,6 +25,9 @@ struct DisplayConfig {
   // Several screens of one spanning output (e.g. three walls): each its own corners, side by side in the
   // output in this order, all drawn from the same eye. Exclusive with `screen`.
   std::vector<ScreenCorners> screens;
+  // span: all screens side by side in one output; monitors: screen i on its own output, monitor + i
+  // (GLFW windows, full screen with `fullscreen`).
+  std::string outputs = "span";
   std::string stereo = "off";     // off | side_by_side | quad_buffer
   double eye_separation = 0.064;  // metres between the eyes (an adult's average interpupillary distance)
   std::optional<glm::dvec3> nominal_eye;  // tracker frame; none: (0, 0, walker eye height)

@@ -19,23 +19,33 @@ void log_glfw_error(int code, const char* description) {
   spdlog::warn("glfw error 0x{:x}: {}", code, description);
 }
 
+// GLFW is initialised once for all windows (several outputs each have one) and terminated with the last:
+// glfwTerminate destroys every window, so no backend may call it while another lives. GL runs on one thread.
+int g_glfw_users = 0;
+bool acquire_glfw() { return g_glfw_users++ > 0 || glfwInit(); }
+void release_glfw() {
+  if (--g_glfw_users == 0) glfwTerminate();
+}
+
 class GLFWBackend final : public Backend {
  public:
   explicit GLFWBackend(const BackendOptions& options) {
     glfwSetErrorCallback(log_glfw_error);
-    if (!glfwInit())
+    if (!acquire_glfw()) {
+      release_glfw();
       throw Error("glfw: glfwInit failed (is DISPLAY or WAYLAND_DISPLAY set to a running server?)");
+    }
     GLFWmonitor* monitor = nullptr;
     int width = options.width, height = options.height;
     if (options.fullscreen) {
       int count = 0;
       GLFWmonitor** monitors = glfwGetMonitors(&count);
       if (count == 0) {
-        glfwTerminate();
+        release_glfw();
         throw Error("glfw: fullscreen asked for, but no monitor is connected");
       }
       if (options.monitor < 0 || options.monitor >= count) {
-        glfwTerminate();
+        release_glfw();
         throw Error("glfw: monitor " + std::to_string(options.monitor) + " asked for, but only " +
                     std::to_string(count) + " are connected (0.." + std::to_string(count - 1) + ")");
       }
@@ -62,7 +72,7 @@ class GLFWBackend final : public Backend {
     }
     if (!window_) window_ = glfwCreateWindow(width, height, options.title.c_str(), monitor, nullptr);
     if (!window_) {
-      glfwTerminate();
+      release_glfw();
       throw Error("glfw: could not create a " + std::to_string(width) + "x" + std::to_string(height) +
                   " window with a GL 3.3 core context");
     }
@@ -70,14 +80,14 @@ class GLFWBackend final : public Backend {
       make_current();
     } catch (...) {
       glfwDestroyWindow(window_);
-      glfwTerminate();
+      release_glfw();
       throw;
     }
     glfwSwapInterval(1);
   }
   ~GLFWBackend() override {
     glfwDestroyWindow(window_);
-    glfwTerminate();
+    release_glfw();
   }
 
   const char* name() const override { return "glfw"; }

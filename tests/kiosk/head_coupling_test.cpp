@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -247,6 +248,56 @@ TEST_F(ScreenModeTest, ReloadAppliesNewScreenCornersFromTheNextFrame) {
   EXPECT_NEAR(after.upper_left.z - after.lower_left.z, 1.2, 1e-9);
 }
 
+// Screens on outputs of their own: GLFW windows (under xvfb-run in CI), each its screen's view; a monitor
+// that does not exist is a start-up error naming it.
+TEST_F(ScreenModeTest, EachScreenOnItsOwnOutputShowsItsOwnView) {
+  const char* x_display = std::getenv("DISPLAY");
+  if (!x_display || !*x_display) GTEST_SKIP() << "no DISPLAY: run under xvfb-run to test several windows";
+  DisplayConfig display;
+  display.backend = "glfw";
+  display.width = 160;
+  display.height = 120;
+  display.refine = false;
+  display.outputs = "monitors";
+  display.screens = {{{-0.8, 1.0, 1.0}, {0.8, 1.0, 1.0}, {-0.8, 1.0, 2.2}},
+                     {{0.8, 1.0, 1.0}, {2.186, 0.2, 1.0}, {0.8, 1.0, 2.2}}};
+  config_.display = display;
+  auto renderer = make_gl_renderer(*bundle_, display);
+  const auto views = screen_views(config_, glm::dvec3(2.0, 2.0, 0.0), 0.0, glm::dvec3(0.0), 0.0);
+  ASSERT_EQ(views.size(), 2u);
+  const float lit[] = {1.0f, 1.0f};
+  renderer->set_dimmers(lit);
+  ASSERT_TRUE(renderer->draw_views(views));
+  renderer->present(true);
+  const render::Image both = renderer->capture();
+  ASSERT_EQ(both.width, 320);  // two 160-pixel windows side by side
+  // Each window shows what a single output of its screen shows.
+  display.outputs = "span";
+  for (std::size_t screen = 0; screen < 2; ++screen) {
+    display.screens = {config_.display.screens[screen]};
+    display.backend = "osmesa";
+    auto alone = make_gl_renderer(*bundle_, display);
+    alone->set_dimmers(lit);
+    ASSERT_TRUE(alone->draw(views[screen]));
+    const render::Image one = alone->capture();
+    int differing = 0;
+    for (int y = 0; y < 120; ++y)
+      for (int x = 0; x < 160; ++x)
+        for (int k = 0; k < 3; ++k)
+          differing += std::abs(int(both.pixel(x + 160 * int(screen), y)[k]) - int(one.pixel(x, y)[k])) > 1;
+    EXPECT_EQ(differing, 0) << "screen " << screen;
+  }
+  display.backend = "glfw";
+  display.fullscreen = true;
+  display.monitor = 7;
+  try {
+    (void)make_gl_renderer(*bundle_, display);
+    ADD_FAILURE() << "monitor 7 does not exist";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("monitor 7"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
   const fs::path dir = fs::temp_directory_path() / "walk_screen_config";
   fs::create_directories(dir);
@@ -274,6 +325,8 @@ TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
       << behind;
   const std::string missing = error("[display.screen]\nlower_left = [-1, 1, 1]\nupper_left = [-1, 1, 2]\n");
   EXPECT_NE(missing.find("missing key 'lower_right'"), std::string::npos) << missing;
+  const std::string gbm = error("[display]\nbackend = \"gbm\"\noutputs = \"monitors\"\n");
+  EXPECT_NE(gbm.find("display.outputs: \"monitors\" needs backend = \"glfw\""), std::string::npos) << gbm;
   const std::string mode = error("[display]\nmode = \"cave\"\n");
   EXPECT_NE(mode.find("display.mode: unknown mode 'cave'"), std::string::npos) << mode;
   const std::string good = error(
