@@ -39,9 +39,9 @@ inline constexpr std::uint32_t kGatheredMax = 64;
 struct BlockSizing {
   // Blocks per element. More skip empty space more finely but copy big polygons into many listings and make
   // a ray step through more blocks; fewer make longer listings, which are contiguous and cheap to scan.
-  // Memory latency dominates, so fewer won: in the sweep of docs/RAYCAST.md (`walk bench rays --casters
-  // axial@0.02,axial@0.05,...`) 0.05 was fastest or within noise of it on the house, office, E1M1 and DM1;
-  // the tower kept gaining down to 0.02.
+  // Memory latency dominates, so fewer won: in the block-size sweep (docs/RAYCAST.md "Design decisions";
+  // `walk bench rays --casters axial@0.02,axial@0.05,...`) 0.05 was fastest or within noise of it on the
+  // house, office, E1M1 and DM1; the tower kept gaining down to 0.02.
   double per_element = 0.05;
   // A layer of blocks along an axis pays only when a ray would otherwise cross several of that axis' planes
   // in it: at most one layer per this many planes (0: no limit). Small buildings (the office: 7 planes an
@@ -196,7 +196,7 @@ class PlaneBlocks {
   // surfaces of total area S in a volume V (Cauchy's mean chord length), against the blocks' side: the
   // office's one block (28 m) is ten times its 2.9 m, and the lanes cost its closest hits 10-26 %; E1M1's
   // blocks (5.4 m) are a third of its 15 m, and the lanes gained its rays from surfaces 12-13 % (walk bench
-  // rays, docs/RAYCAST.md "Session 9").
+  // rays, docs/RAYCAST.md "How the axial caster works").
   std::uint32_t most_gathered_ = 0;
   Stats stats_;
 };
