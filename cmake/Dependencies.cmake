@@ -11,6 +11,7 @@ find_package(JPEG REQUIRED)  # albedo maps (libjpeg-turbo)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)
 pkg_check_modules(TOMLPP REQUIRED IMPORTED_TARGET tomlplusplus)
+pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)  # inputs-unchanged hashes (common/hash)
 pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)
 find_package(assimp REQUIRED)  # mesh import (OBJ, glTF, 3DS...); Debian ships its CMake config
 pkg_check_modules(SYSTEMD REQUIRED IMPORTED_TARGET libsystemd)

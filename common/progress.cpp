@@ -1,6 +1,7 @@
 #include "common/progress.hpp"
 
 #include <fmt/format.h>
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -28,6 +29,13 @@ ProgressStyle resolve_auto() {
   const char* term = std::getenv("TERM");
   if (!isatty(STDERR_FILENO) || !term || std::string(term) == "dumb") return ProgressStyle::Log;
   return ProgressStyle::Bar;
+}
+
+// The terminal's width: a bar longer than the line would wrap, and '\r' returns only to the last row.
+std::size_t terminal_columns() {
+  winsize size{};
+  if (ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+  return 80;
 }
 
 std::string duration_text(double seconds) {
@@ -142,8 +150,10 @@ void Progress::maybe_show() {
     const int filled = static_cast<int>(std::lround(fraction * kBarWidth));
     bar = "[" + std::string(filled, '#') + std::string(kBarWidth - filled, '-') + "] ";
   }
+  std::string shown = bar + text;
+  if (const std::size_t columns = terminal_columns(); shown.size() >= columns) shown.resize(columns - 1);
   std::lock_guard lock(mutex_);
-  std::fprintf(stderr, "\r%s%s\033[K", bar.c_str(), text.c_str());
+  std::fprintf(stderr, "\r%s\033[K", shown.c_str());
   std::fflush(stderr);
   shown_ = true;
 }

@@ -12,6 +12,7 @@
 #include <memory>
 #include <numbers>
 
+#include "common/hash.hpp"
 #include "compiler/cleanup/cleanup.hpp"
 #include "compiler/cleanup/stray_geometry.hpp"
 #include "compiler/geometry/coarse_mesh.hpp"
@@ -41,12 +42,6 @@ constexpr double kPanelReflectance = 0.8;
 // Automatic exposure maps this percentile of lit-surface radiosity to 1/kExposureHeadroom of white.
 constexpr double kExposurePercentile = 0.95;
 constexpr double kExposureHeadroom = 0.8;
-
-std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t size) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-  return h;
-}
 
 class StageTimer {
  public:
@@ -98,7 +93,7 @@ model::Polygon panel_polygon(const model::Luminaire& l) {
 
 template <typename T>
 std::uint64_t hash_vector(std::uint64_t h, const std::vector<T>& v) {
-  return fnv1a(h, v.data(), v.size() * sizeof(T));
+  return hash_bytes(h, v.data(), v.size() * sizeof(T));
 }
 
 // The light solve depends only on the meshed surfaces, their reflectances, the luminaires and the lighting
@@ -109,17 +104,18 @@ std::uint64_t light_inputs_hash(const model::BundleContents& out,
   std::uint64_t h = compiler_identity;
   h = hash_vector(h, out.vertices);
   h = hash_vector(h, out.indices);
-  for (const auto& p : out.polygons) h = fnv1a(h, &p, offsetof(model::PolygonRecord, name));  // not the name
-  for (const auto& l2 : out.luminaires) h = fnv1a(h, &l2, offsetof(model::LuminaireRecord, name));
+  for (const auto& p : out.polygons)
+    h = hash_bytes(h, &p, offsetof(model::PolygonRecord, name));  // not the name
+  for (const auto& l2 : out.luminaires) h = hash_bytes(h, &l2, offsetof(model::LuminaireRecord, name));
   const double knobs[] = {double(l.method), l.grid,     double(l.samples_per_luminaire),
                           l.rays_per_watt,  l.residual, double(circuits)};
-  h = fnv1a(h, knobs, sizeof knobs);
+  h = hash_bytes(h, knobs, sizeof knobs);
   for (const auto& lum : luminaires) {  // what the bundle's records leave out
     const double shape[] = {double(lum.kind), lum.cone,       lum.exponent,
                             lum.position.x,   lum.position.y, lum.position.z};
-    h = fnv1a(h, shape, sizeof shape);
+    h = hash_bytes(h, shape, sizeof shape);
   }
-  return fnv1a(h, l.ray_caster.data(), l.ray_caster.size());
+  return hash_bytes(h, l.ray_caster.data(), l.ray_caster.size());
 }
 
 const model::StageRecord* previous_stage(const model::Bundle* previous, const char* name) {
@@ -131,27 +127,23 @@ const model::StageRecord* previous_stage(const model::Bundle* previous, const ch
 
 }  // namespace
 
-std::uint64_t hash_file(std::uint64_t h, const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<char> buffer(1 << 16);
-  while (in) {
-    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    h = fnv1a(h, buffer.data(), static_cast<std::size_t>(in.gcount()));
-  }
-  return h;
-}
-
-// The running compiler binary is an input too: any rebuild of the compiler invalidates old bundles, so
-// "up to date" can never hide a compiler change (the revision constant alone relies on people bumping it).
+// The compiler is an input too: its version (git describe) and revision constant. A build from an edited tree
+// carries the same version for every edit, so its executable is hashed as well: "up to date" never hides a
+// compiler change during development, and a release build does not read its own 60 MB to say who it is.
 std::uint64_t compiler_identity() {
-  static const std::uint64_t identity =
-      fnv1a(hash_file(0xcbf29ce484222325ull, "/proc/self/exe"), &kCompilerRevision, sizeof kCompilerRevision);
+  static const std::uint64_t identity = [] {
+    const std::string v = version();
+    std::uint64_t h = hash_bytes(kCompilerRevision, v.data(), v.size());
+    if (v.find("dirty") != std::string::npos || v.find("+git.") == std::string::npos)
+      h = hash_file(h, "/proc/self/exe");
+    return h;
+  }();
   return identity;
 }
 
 std::uint64_t scene_hash(const SceneConfig& config) {
   std::uint64_t h = compiler_identity();
-  h = fnv1a(h, config.text.data(), config.text.size());
+  h = hash_bytes(h, config.text.data(), config.text.size());
   h = hash_file(h, config.model_file);
   // What a mesh model reads beside itself (its .mtl, albedo maps) and the scene's texture folders: an
   // edited texture must recompile, not be taken for the bundle's own.

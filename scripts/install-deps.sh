@@ -12,8 +12,8 @@ packages=(
   libhidapi-dev libgpiod-dev libmodbus-dev libsystemd-dev socat systemd procps
   # config, CLI, logging, geometry, images
   libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev libpolyclipping-dev libpng-dev libjpeg-dev
-  # parallel loops of the compiler stages
-  libtbb-dev
+  # parallel loops of the compiler stages, and the inputs-unchanged hashes
+  libtbb-dev libxxhash-dev
   # levels of detail of clusters for moving frames
   libmeshoptimizer-dev
   # tests and benchmarks

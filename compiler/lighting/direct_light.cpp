@@ -6,7 +6,8 @@
 #include <glm/geometric.hpp>
 #include <numbers>
 #include <random>
-#include <thread>
+
+#include "common/parallel_for.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -76,15 +77,11 @@ std::vector<float> direct_light(std::span<const SurfaceSample> samples,
                                 DirectLightStats* stats) {
   std::vector<float> out(samples.size() * circuit_count * 3, 0.0f);
   std::atomic<std::uint64_t> rays{0}, blocked{0};
-  std::atomic<std::size_t> next{0};
   constexpr std::size_t kChunk = 256;
-  auto worker = [&] {
+  parallel_ranges(samples.size(), kChunk, options.threads, [&](std::size_t begin, std::size_t end) {
     std::vector<model::Vec3> points;
     std::uint64_t my_rays = 0, my_blocked = 0;
-    for (;;) {
-      const std::size_t begin = next.fetch_add(kChunk);
-      if (begin >= samples.size()) break;
-      const std::size_t end = std::min(samples.size(), begin + kChunk);
+    {
       for (std::size_t s = begin; s < end; ++s) {
         const SurfaceSample& p = samples[s];
         std::mt19937_64 rng(0x9e3779b97f4a7c15ull ^ s);  // per sample: same result for any thread count
@@ -123,11 +120,7 @@ std::vector<float> direct_light(std::span<const SurfaceSample> samples,
     }
     rays += my_rays;
     blocked += my_blocked;
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::max(1u, options.threads); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  });
   if (stats) *stats = {rays.load(), blocked.load()};
   return out;
 }

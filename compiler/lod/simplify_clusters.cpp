@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common/progress.hpp"
-#include "compiler/visibility/parallel_for.hpp"
+#include "common/parallel_for.hpp"
 #include "model/model.hpp"
 
 namespace walk::compiler {

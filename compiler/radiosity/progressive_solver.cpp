@@ -8,8 +8,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
-#include <thread>
 
+#include "common/parallel_for.hpp"
 #include "common/progress.hpp"
 #include "compiler/radiosity/sampling.hpp"
 #include "compiler/raycast/ray_caster.hpp"
@@ -122,46 +122,39 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     for (std::uint32_t si = 0; si < shots.size(); ++si)
       for (std::uint32_t b = 0; b < shots[si].rays; b += kChunkRays)
         chunks.push_back({si, b, std::min(shots[si].rays, b + kChunkRays)});
-    std::atomic<std::size_t> next{0};
-    auto work = [&] {
-      for (std::size_t ci; (ci = next.fetch_add(1)) < chunks.size();) {
-        const Chunk& chunk = chunks[ci];
-        const Shot& s = shots[chunk.shot];
-        const std::uint64_t source = (s.point ? 1ull << 40 : 0) + s.patch;
-        SplitMix rng(mix_seed(mix_seed(options.seed, round), source << 20 | chunk.begin / kChunkRays));
-        const auto side = static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(double(s.rays)))));
-        for (std::uint32_t r = chunk.begin; r < chunk.end; ++r) {
-          model::Vec3 origin, dir;
-          if (s.point) {
-            const PointEmitter& e = points[s.patch];
-            origin = e.position;
-            dir = point_direction(e, r, s.rays, rng);
-          } else {
-            const Patch& p = set.patches[s.patch];
-            const model::Vec3 o = triangle_point(set.vertices[p.v[0]], set.vertices[p.v[1]],
-                                                 set.vertices[p.v[2]], rng.uniform(), rng.uniform());
-            origin = o + p.normal * kRayOffset;
-            // Jittered strata over the cosine-warped square for the first side^2 rays; the rest are plain
-            // random (re-using strata for them would favour one side of the hemisphere).
-            double u1 = rng.uniform(), u2 = rng.uniform();
-            if (r < side * side) {
-              u1 = ((r % side) + u1) / side;
-              u2 = ((r / side) + u2) / side;
-            }
-            dir = cosine_direction(p.normal, u1, u2);
+    parallel_for(chunks.size(), threads, [&](std::size_t ci) {
+      const Chunk& chunk = chunks[ci];
+      const Shot& s = shots[chunk.shot];
+      const std::uint64_t source = (s.point ? 1ull << 40 : 0) + s.patch;
+      SplitMix rng(mix_seed(mix_seed(options.seed, round), source << 20 | chunk.begin / kChunkRays));
+      const auto side = static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(double(s.rays)))));
+      for (std::uint32_t r = chunk.begin; r < chunk.end; ++r) {
+        model::Vec3 origin, dir;
+        if (s.point) {
+          const PointEmitter& e = points[s.patch];
+          origin = e.position;
+          dir = point_direction(e, r, s.rays, rng);
+        } else {
+          const Patch& p = set.patches[s.patch];
+          const model::Vec3 o = triangle_point(set.vertices[p.v[0]], set.vertices[p.v[1]],
+                                               set.vertices[p.v[2]], rng.uniform(), rng.uniform());
+          origin = o + p.normal * kRayOffset;
+          // Jittered strata over the cosine-warped square for the first side^2 rays; the rest are plain
+          // random (re-using strata for them would favour one side of the hemisphere).
+          double u1 = rng.uniform(), u2 = rng.uniform();
+          if (r < side * side) {
+            u1 = ((r % side) + u1) / side;
+            u2 = ((r / side) + u2) / side;
           }
-          Ray ray{origin, dir, 0.0};
-          const RayHit hit = caster->closest(ray);
-          std::int32_t out = kEscaped;
-          if (hit.hit()) out = hit.front ? static_cast<std::int32_t>(hit.polygon) : kBackFace;
-          hits[s.first_ray + r] = out;
+          dir = cosine_direction(p.normal, u1, u2);
         }
+        Ray ray{origin, dir, 0.0};
+        const RayHit hit = caster->closest(ray);
+        std::int32_t out = kEscaped;
+        if (hit.hit()) out = hit.front ? static_cast<std::int32_t>(hit.polygon) : kBackFace;
+        hits[s.first_ray + r] = out;
       }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& th : pool) th.join();
+    });
     stats.rays += total;
   };
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
 
+#include "common/parallel_for.hpp"
 #include "compiler/raycast/axial_caster.hpp"
 #include "compiler/raycast/brute_force_caster.hpp"
 #include "compiler/raycast/bvh_caster.hpp"
@@ -20,24 +20,7 @@ constexpr std::size_t kChunk = 1024;
 
 void parallel_chunks(std::size_t count, unsigned threads,
                      const std::function<void(std::size_t, std::size_t)>& body) {
-  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>((count + kChunk - 1) / kChunk)));
-  if (threads <= 1) {
-    if (count > 0) body(0, count);
-    return;
-  }
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (;;) {
-      const std::size_t first = next.fetch_add(kChunk);
-      if (first >= count) return;
-      body(first, std::min(count, first + kChunk));
-    }
-  };
-  std::vector<std::thread> pool;
-  pool.reserve(threads - 1);
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  parallel_ranges(count, kChunk, threads, body);
 }
 
 void RayCaster::closest_batch(std::span<const Ray> rays, std::span<RayHit> hits, unsigned threads) const {

@@ -10,7 +10,7 @@
 #include "common/progress.hpp"
 #include "compiler/visibility/draw_order.hpp"
 #include "compiler/visibility/inside_flood.hpp"
-#include "compiler/visibility/parallel_for.hpp"
+#include "common/parallel_for.hpp"
 #include "compiler/visibility/pvs_flow.hpp"
 #include "compiler/visibility/pvs_sampled.hpp"
 #include "compiler/visibility/vis_items.hpp"

@@ -1,11 +1,10 @@
 #include "compiler/visibility/pvs_flow.hpp"
 
 #include <algorithm>
-#include <thread>
 #include <utility>
 
 #include "common/progress.hpp"
-#include "compiler/visibility/parallel_for.hpp"
+#include "common/parallel_for.hpp"
 #include "compiler/visibility/vis_items.hpp"
 
 namespace walk::compiler {

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "common/progress.hpp"
-#include "compiler/visibility/parallel_for.hpp"
+#include "common/parallel_for.hpp"
 #include "compiler/visibility/trace_through_glass.hpp"
 
 namespace walk::compiler {

@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 #include <random>
 
-#include "compiler/visibility/parallel_for.hpp"
+#include "common/parallel_for.hpp"
 #include "compiler/visibility/trace_through_glass.hpp"
 
 namespace walk::compiler {
