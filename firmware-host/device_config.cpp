@@ -1,5 +1,6 @@
 #include "firmware-host/device_config.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <numbers>
 
@@ -8,10 +9,14 @@ namespace {
 
 constexpr double kDegrees = std::numbers::pi / 180.0;
 
+// Ranges are checked on what the file says; defaults computed from other keys (a Modbus panel's stale_after
+// from its poll rate, retry_max from a larger retry_min) are fitted, not reported as the user's mistake.
 devices::FaultPolicy faults(const Section& s, devices::FaultPolicy p) {
-  p.stale_after = s.number("stale_after", p.stale_after, 0.001, 3600.0);
+  p.stale_after = s.raw().get("stale_after") ? s.number("stale_after", p.stale_after, 0.001, 3600.0)
+                                             : std::clamp(p.stale_after, 0.001, 3600.0);
   p.retry_min = s.number("retry_min", p.retry_min, 0.0, 3600.0);
-  p.retry_max = s.number("retry_max", p.retry_max, p.retry_min, 3600.0);
+  p.retry_max = s.raw().get("retry_max") ? s.number("retry_max", p.retry_max, p.retry_min, 3600.0)
+                                         : std::max(p.retry_max, p.retry_min);
   p.log_every = s.number("log_every", p.log_every, 0.0, 86400.0);
   return p;
 }

@@ -2,8 +2,8 @@
 // Mock devices that replay recorded CSV traces: deterministic input for simulated runs and tests.
 // Columns: treadmill `time,speed[,steering_deg]`; head tracker `time,yaw_deg[,pitch_deg][,x_m,y_m,z_m]`
 // (position: the head's offset from rest in the tracker frame, metres);
-// dimmer panel `time,ch0,ch1,...` (levels 0..1); buttons `time,button` (button names as in config). Angles
-// are degrees in the file, radians in readings.
+// dimmer panel `time,ch0,ch1,...` (levels 0..1); buttons `time,button` (0 = return_to_start, 1 =
+// next_building). Angles are degrees in the file, radians in readings.
 #include <memory>
 #include <string>
 

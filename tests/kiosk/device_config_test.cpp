@@ -89,6 +89,24 @@ function = "input"
   EXPECT_TRUE(m.input_registers);
 }
 
+TEST_F(DeviceConfigTest, DefaultsComputedFromOtherKeysAreFittedNotReportedAsMistakes) {
+  // retry_min above retry_max's default, with retry_max not written: retry_max follows it.
+  const std::string slow_retry = error(
+      "[devices.treadmill]\nbackend = \"hid\"\npath = \"/dev/x\"\nretry_min = 10\n"
+      "report = { length = 3, fields = [{ name = \"speed\", offset = 1, size = 2 }] }\n");
+  EXPECT_EQ(slow_retry, "") << slow_retry;
+  // A slow panel whose derived stale_after would pass 3600 s: fitted, not blamed on a key never written.
+  const std::string slow_panel = error(
+      "[devices.dimmer_panel]\nbackend = \"modbus\"\nregisters = [0]\n"
+      "host = \"127.0.0.1\"\npoll_hz = 0.1\ntimeout_ms = 60000\nretries = 100\n");
+  EXPECT_EQ(slow_panel, "") << slow_panel;
+  // Written out of range, it is still the user's mistake.
+  const std::string written = error(
+      "[devices.treadmill]\nbackend = \"hid\"\npath = \"/dev/x\"\nretry_min = 10\n"
+      "retry_max = 5\nreport = { length = 3, fields = [{ name = \"speed\", offset = 1, size = 2 }] }\n");
+  EXPECT_NE(written.find("retry_max"), std::string::npos) << written;
+}
+
 TEST_F(DeviceConfigTest, ReportLayoutsSayWhatIsMissingOrImpossible) {
   const std::string no_length = error(
       "[devices.treadmill]\nbackend = \"hid\"\npath = \"/dev/x\"\n"
