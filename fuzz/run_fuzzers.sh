@@ -27,7 +27,7 @@ build() {  # name sources...: rebuilt only when a source is newer than the binar
   local name=$1
   shift
   local stale=0
-  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp "$src"/devices/*/*.hpp "$src"/compiler/scene/*.hpp; do
+  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp "$src"/devices/*/*.hpp "$src"/compiler/scene/*.hpp "$src"/firmware-host/*.hpp; do
     [ -f "$f" ] && [ "$f" -nt "$out/$name" ] && stale=1
   done
   [ -x "$out/$name" ] && [ $stale = 0 ] && return 0
@@ -49,8 +49,12 @@ build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_tom
   "$src"/compiler/visibility/visibility_config.cpp \
   "${common[@]}" -ltomlplusplus -lspdlog -lfmt
 build modbus_registers_fuzzer "$src"/fuzz/modbus_registers_fuzzer.cpp "$src"/devices/modbus/register_levels.cpp -lfmt
+# The kiosk config goes through toml++ too: the same two flags, for the same reasons.
+build kiosk_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/kiosk_toml_fuzzer.cpp \
+  "$src"/firmware-host/{kiosk_config,device_config}.cpp "$src"/devices/hid/report_layout.cpp "$src"/devices/devices.cpp \
+  "$src"/model/error.cpp -ltomlplusplus -lfmt
 status=0
-for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml; do
+for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true

@@ -1,4 +1,5 @@
-// The libFuzzer targets (fuzz/: DXF, .map, bundle reader with checksums repaired, CSV traces), built with
+// The libFuzzer targets (fuzz/: DXF, .map, bundle reader with checksums repaired, CSV traces, HID reports,
+// Modbus registers, scene and kiosk TOML configs), built with
 // clang and run for a bounded time (WALK_FUZZ_SECONDS, default 30 s each) on the committed seed corpus: no
 // crash, no hang, and every rejection a walk::Error naming file and line. Skipped where clang cannot link
 // libFuzzer.
