@@ -10,6 +10,7 @@ find_package(PNG REQUIRED)
 find_package(JPEG REQUIRED)  # albedo maps (libjpeg-turbo)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)  # walkd's summary.json
 pkg_check_modules(TOMLPP REQUIRED IMPORTED_TARGET tomlplusplus)
 pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)  # inputs-unchanged hashes (common/hash)
 pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)

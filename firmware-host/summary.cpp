@@ -1,90 +1,50 @@
 #include "firmware-host/summary.hpp"
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
 
 namespace walk::kiosk {
-namespace {
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-template <typename T, typename F>
-std::string list(const std::vector<T>& items, F&& format) {
-  std::string out = "[";
-  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + format(items[i]);
-  return out + "]";
-}
-
-std::string vec(const glm::dvec3& v) {
-  return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]";
-}
-
-}  // namespace
-
+// nlohmann-json, keys in the order written: readers diffing two summaries see the same layout, and a value
+// that is not a number (a NaN from a run that drew nothing) is written as null, never as `nan`.
 std::string summary_json(const Summary& s) {
-  std::ostringstream o;
-  o << "{\n"
-    << "  \"mode\": " << quoted(s.mode) << ",\n"
-    << "  \"stopped_by\": " << quoted(s.stopped_by) << ",\n"
-    << "  \"renderer\": " << quoted(s.renderer) << ",\n"
-    << "  \"frames\": " << s.frames << ",\n"
-    << "  \"frames_drawn\": " << s.frames_drawn << ",\n"
-    << "  \"simulated_seconds\": " << num(s.simulated_seconds) << ",\n"
-    << "  \"wall_seconds\": " << num(s.wall_seconds) << ",\n"
-    << "  \"render_seconds\": " << num(s.render_seconds) << ",\n"
-    << "  \"fps\": " << num(s.fps) << ",\n"
-    << "  \"cells_visited\": " << list(s.cells_visited, [](std::uint32_t c) { return std::to_string(c); })
-    << ",\n"
-    << "  \"rooms_visited\": " << list(s.rooms_visited, quoted) << ",\n"
-    << "  \"room_sequence\": " << list(s.room_sequence, quoted) << ",\n"
-    << "  \"distance_m\": " << num(s.distance) << ",\n"
-    << "  \"frames_saved\": " << s.frames_saved << ",\n"
-    << "  \"final_feet\": " << vec(s.final_feet) << ",\n"
-    << "  \"final_eye\": " << vec(s.final_eye) << ",\n"
-    << "  \"final_heading_deg\": " << num(s.final_heading_deg) << ",\n"
-    << "  \"final_room\": " << quoted(s.final_room) << ",\n"
-    << "  \"final_cell\": " << s.final_cell << ",\n"
-    << "  \"reloads\": " << s.reloads << ",\n"
-    << "  \"returns_to_start\": " << s.returns_to_start << ",\n"
-    << "  \"devices\": {";
-  for (std::size_t i = 0; i < s.device_states.size(); ++i)
-    o << (i ? ", " : "") << quoted(s.device_states[i].first) << ": " << quoted(s.device_states[i].second);
-  o << "},\n  \"device_faulty_frames\": {";
-  for (std::size_t i = 0; i < s.device_faulty_frames.size(); ++i)
-    o << (i ? ", " : "") << quoted(s.device_faulty_frames[i].first) << ": "
-      << s.device_faulty_frames[i].second;
-  o << "},\n"
-    << "  \"latency_samples\": " << s.latency_samples << ",\n"
-    << "  \"latency_p50_ms\": " << num(s.latency_p50 * 1e3) << ",\n"
-    << "  \"latency_p99_ms\": " << num(s.latency_p99 * 1e3) << ",\n"
-    << "  \"latency_max_ms\": " << num(s.latency_max * 1e3) << "\n"
-    << "}\n";
-  return o.str();
+  using Json = nlohmann::ordered_json;
+  auto vec = [](const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); };
+  Json j;
+  j["mode"] = s.mode;
+  j["stopped_by"] = s.stopped_by;
+  j["renderer"] = s.renderer;
+  j["frames"] = s.frames;
+  j["frames_drawn"] = s.frames_drawn;
+  j["simulated_seconds"] = s.simulated_seconds;
+  j["wall_seconds"] = s.wall_seconds;
+  j["render_seconds"] = s.render_seconds;
+  j["fps"] = s.fps;
+  j["cells_visited"] = s.cells_visited;
+  j["rooms_visited"] = s.rooms_visited;
+  j["room_sequence"] = s.room_sequence;
+  j["distance_m"] = s.distance;
+  j["frames_saved"] = s.frames_saved;
+  j["final_feet"] = vec(s.final_feet);
+  j["final_eye"] = vec(s.final_eye);
+  j["final_heading_deg"] = s.final_heading_deg;
+  j["final_room"] = s.final_room;
+  j["final_cell"] = s.final_cell;
+  j["reloads"] = s.reloads;
+  j["returns_to_start"] = s.returns_to_start;
+  j["devices"] = Json::object();
+  for (const auto& [name, state] : s.device_states) j["devices"][name] = state;
+  j["device_faulty_frames"] = Json::object();
+  for (const auto& [name, frames] : s.device_faulty_frames) j["device_faulty_frames"][name] = frames;
+  j["latency_samples"] = s.latency_samples;
+  j["latency_p50_ms"] = s.latency_p50 * 1e3;
+  j["latency_p99_ms"] = s.latency_p99 * 1e3;
+  j["latency_max_ms"] = s.latency_max * 1e3;
+  // Replace: invalid UTF-8 in a room name read from a bundle must not stop the summary being written.
+  return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 void write_summary(const std::string& folder, const Summary& summary) {

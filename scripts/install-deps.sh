@@ -11,7 +11,7 @@ packages=(
   # devices: HID, GPIO (libgpiod v1), Modbus, systemd notify/journal
   libhidapi-dev libgpiod-dev libmodbus-dev libsystemd-dev socat systemd procps
   # config, CLI, logging, geometry, images
-  libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev libpolyclipping-dev libpng-dev libjpeg-dev
+  libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libpolyclipping-dev libpng-dev libjpeg-dev
   # parallel loops of the compiler stages, and the inputs-unchanged hashes
   libtbb-dev libxxhash-dev
   # levels of detail of clusters for moving frames
