@@ -6,11 +6,11 @@
 #include <memory>
 #include <random>
 
-#include "bench/support/ray_models.hpp"
-#include "bench/support/ray_sets.hpp"
 #include "compiler/raycast/embree_caster.hpp"
 #include "compiler/raycast/ray_caster.hpp"
 #include "compiler/raycast/watertight_triangle.hpp"
+#include "tools/bench_support/ray_models.hpp"
+#include "tools/bench_support/ray_sets.hpp"
 
 namespace {
 

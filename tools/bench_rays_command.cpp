@@ -10,12 +10,12 @@
 #include <memory>
 #include <sstream>
 
-#include "bench/support/leak_box.hpp"
-#include "bench/support/ray_models.hpp"
-#include "bench/support/ray_sets.hpp"
 #include "compiler/raycast/axial_caster.hpp"
 #include "compiler/raycast/ray_caster.hpp"
 #include "model/error.hpp"
+#include "tools/bench_support/leak_box.hpp"
+#include "tools/bench_support/ray_models.hpp"
+#include "tools/bench_support/ray_sets.hpp"
 #include "tools/commands.hpp"
 
 namespace walk::tools {

@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <random>
 
-#include "bench/support/ray_models.hpp"
-#include "bench/support/ray_sets.hpp"
 #include "compiler/raycast/axial_caster.hpp"
 #include "compiler/raycast/crossing_lanes.hpp"
+#include "tools/bench_support/ray_models.hpp"
+#include "tools/bench_support/ray_sets.hpp"
 
 namespace walk::compiler {
 namespace {

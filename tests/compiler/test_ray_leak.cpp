@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "bench/support/leak_box.hpp"
 #include "compiler/raycast/axial_caster.hpp"
+#include "tools/bench_support/leak_box.hpp"
 
 namespace walk::compiler {
 namespace {

@@ -6,12 +6,12 @@
 #include <chrono>
 #include <cstdio>
 
-#include "bench/support/ray_models.hpp"
-#include "bench/support/ray_sets.hpp"
 #include "compiler/raycast/axial_caster.hpp"
 #include "compiler/raycast/embree_caster.hpp"
 #include "model/error.hpp"
 #include "tests/compiler/test_ray_compare.hpp"
+#include "tools/bench_support/ray_models.hpp"
+#include "tools/bench_support/ray_sets.hpp"
 
 namespace walk::compiler {
 namespace {

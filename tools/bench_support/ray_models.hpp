@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "bench/support/office_tower.hpp"
 #include "compiler/cleanup/cleanup.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/t_junctions.hpp"
@@ -18,6 +17,7 @@
 #include "compiler/import/mesh_reader.hpp"
 #include "compiler/raycast/triangle_bvh.hpp"
 #include "model/error.hpp"
+#include "tools/bench_support/office_tower.hpp"
 
 namespace walk::bench {
 
