@@ -123,7 +123,7 @@ void Daemon::poll_devices(double now) {
       speed_ = 0.0;  // stale or down: stand still rather than keep walking on an old speed
     }
   }
-  if (devices_.head_tracker)
+  if (devices_.head_tracker) {
     if (auto r = devices_.head_tracker->poll(now)) {  // stale: keep looking where the head last was
       yaw_ = r->yaw;
       pitch_ = r->pitch;
@@ -135,6 +135,7 @@ void Daemon::poll_devices(double now) {
       head_live_ = false;  // screen mode: the eye glides back to the nominal position
       head_position_.reset();
     }
+  }
   if (devices_.dimmer_panel)
     if (auto r = devices_.dimmer_panel->poll(now)) {  // the panel keeps its last good levels itself
       for (std::size_t ch = 0; ch < channel_circuit_.size() && ch < r->levels.size(); ++ch)

@@ -172,11 +172,11 @@ TEST_F(HardCompile, NothingLeftToDrawIsAnErrorAndNothingIsWritten) {
 TEST_F(HardCompile, MissingMaterialLibraryIsWarnedAboutByName) {
   std::ofstream(dir_ / "grey.obj") << "mtllib absent.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   MeshStats stats;
-  (void)read_mesh((dir_ / "grey.obj").string(), {1.0, false, 1.0}, &stats);
+  (void)read_mesh((dir_ / "grey.obj").string(), {1.0, false, 1.0, {}}, &stats);
   EXPECT_EQ(stats.material_libraries_missing, 1u);
   std::ofstream(dir_ / "ok.mtl") << "newmtl a\nKd 1 0 0\n";
   std::ofstream(dir_ / "red.obj") << "mtllib ok.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
-  (void)read_mesh((dir_ / "red.obj").string(), {1.0, false, 1.0}, &stats);
+  (void)read_mesh((dir_ / "red.obj").string(), {1.0, false, 1.0, {}}, &stats);
   EXPECT_EQ(stats.material_libraries_missing, 0u);
 }
 

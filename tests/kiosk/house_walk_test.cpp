@@ -125,8 +125,7 @@ TEST_F(HouseWalkTest, WalkdStopsCleanlyOnSigtermInRealTime) {
   ASSERT_GE(pid, 0);
   if (pid == 0) {
     const std::string config_arg = config.string(), out_arg = out.string();
-    std::freopen(log.c_str(), "w", stdout);
-    std::freopen(log.c_str(), "a", stderr);
+    if (!std::freopen(log.c_str(), "w", stdout) || !std::freopen(log.c_str(), "a", stderr)) _exit(126);
     execl(walkd.c_str(), "walkd", "--config", config_arg.c_str(), "--output", out_arg.c_str(), nullptr);
     _exit(127);
   }

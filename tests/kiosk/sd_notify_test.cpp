@@ -52,8 +52,7 @@ TEST(WalkdNotify, SendsReadyWatchdogStatusAndStopping) {
     setenv("NOTIFY_SOCKET", socket_path.c_str(), 1);
     setenv("WATCHDOG_USEC", "2000000", 1);
     const std::string config = (dir / "kiosk.toml").string(), out = (dir / "out").string();
-    std::freopen(log.c_str(), "w", stdout);
-    std::freopen(log.c_str(), "a", stderr);
+    if (!std::freopen(log.c_str(), "w", stdout) || !std::freopen(log.c_str(), "a", stderr)) _exit(126);
     execl(walkd.c_str(), "walkd", "--config", config.c_str(), "--simulate", "1", "--output", out.c_str(),
           nullptr);
     _exit(127);
