@@ -532,6 +532,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     StageTimer t(stages, "cells");
     VisibilityConfig vis = config.visibility;
     if (vis.threads == 0) vis.threads = options.threads;
+    vis.source = config.path;
     // Inside-flood seeds: the start at eye height, and a point in the room below each luminaire.
     constexpr double kSeedEyeHeight = 1.2;        // metres above the start point, which is on a floor
     constexpr double kSeedBelowLuminaire = 0.25;  // metres along the luminaire's normal, into its room

@@ -7,13 +7,14 @@
 #include <chrono>
 #include <iterator>
 
+#include "common/parallel_for.hpp"
 #include "common/progress.hpp"
 #include "compiler/visibility/draw_order.hpp"
 #include "compiler/visibility/inside_flood.hpp"
-#include "common/parallel_for.hpp"
 #include "compiler/visibility/pvs_flow.hpp"
 #include "compiler/visibility/pvs_sampled.hpp"
 #include "compiler/visibility/vis_items.hpp"
+#include "model/error.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -139,6 +140,7 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
   std::vector<std::vector<std::uint32_t>> sampled, flow_polys;
   std::unique_ptr<RayCaster> caster;
   if (config.method == PvsMethod::Sampled || config.method == PvsMethod::Combined) {
+    check_sample_budget(config, std::size_t(std::count(r.inside.begin(), r.inside.end(), 1)));
     std::vector<Triangle> triangles;
     for (std::uint32_t p = 0; p < r.polygons.size(); ++p)
       for (const auto& tri : r.polygons[p].triangles) triangles.push_back({tri[0], tri[1], tri[2], p});
@@ -209,6 +211,21 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
         flow_polys.empty() ? 0 : flow_polys[c].size(), sampled.empty() ? 0 : sampled[c].size());
   }
   return r;
+}
+
+// The sampled PVS casts cells x sample_points x rays_per_point rays: checked once the cells are known,
+// before one is cast (issue 28's work budgets), so a typo in a knob stops the compile in milliseconds.
+void check_sample_budget(const VisibilityConfig& config, std::size_t cells) {
+  const double rays = double(cells) * config.sample_points * config.rays_per_point;
+  if (rays <= kMaxSampledPvsRays) return;
+  throw Error(located(
+      config.source, 0,
+      fmt::format(
+          "[visibility] sample_points = {} x rays_per_point = {} over {} cells would cast about {:.3g} "
+          "rays, above the limit of {:.0e}",
+          config.sample_points, config.rays_per_point, cells, rays, kMaxSampledPvsRays),
+      fmt::format("lower sample_points x rays_per_point to at most {:.3g}",
+                  kMaxSampledPvsRays / double(cells))));
 }
 
 CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfig& config) {

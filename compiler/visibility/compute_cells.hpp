@@ -57,4 +57,11 @@ struct CellsStageCounts {
 // Fills out.cells, out.nodes and out.pvs from out's vertices, indices and polygons.
 CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfig& config);
 
+// Rays the sampled PVS may cast in one compile: 2e9, the same bound as the solver's first round (about an
+// hour and a half on 2 cores), past which sample_points or rays_per_point is a typo, not a choice.
+inline constexpr double kMaxSampledPvsRays = 2e9;
+// Throws walk::Error naming the scene file, the keys, the estimate and the limit when `cells` cells would
+// cast more; called by compute_cells once the cells are known, before any ray.
+void check_sample_budget(const VisibilityConfig& config, std::size_t cells);
+
 }  // namespace walk::compiler

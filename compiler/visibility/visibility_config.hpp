@@ -62,6 +62,8 @@ struct VisibilityConfig {
   // Points inside the building (local coordinates) the inside flood starts from (inside_flood.hpp); the
   // compiler gives the scene's start and a point below each luminaire. None: every cell is inside.
   std::vector<model::Vec3> seeds;
+  // The scene file, for errors that name a key of its [visibility] table (set by the compile pipeline).
+  std::string source;
   std::string ray_caster = "axial";
   unsigned threads = 0;  // 0: hardware concurrency
   std::uint64_t seed = 1;

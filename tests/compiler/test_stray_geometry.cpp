@@ -156,6 +156,18 @@ TEST_F(HardCompile, WorkMultipliersAreRefusedBeforeTheWork) {
   EXPECT_NE(patches.find("[lighting] grid = 0.01"), std::string::npos) << patches;
   EXPECT_NE(patches.find("raise grid to at least"), std::string::npos) << patches;
   EXPECT_NO_THROW(check_patch_budget(room, config, 64ull << 20));
+  // The sampled PVS's rays, once the cells are known and before any is cast.
+  SceneConfig sampled = config;
+  sampled.visibility.sample_points = 1'000'000;
+  sampled.visibility.rays_per_point = 1'000'000;
+  const auto cells_start = std::chrono::steady_clock::now();
+  const std::string cells = error_of([&] { (void)compile_scene(sampled); });
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - cells_start).count(), 30.0)
+      << "refused before sampling (a generous bound; the light stage before it takes most of this)";
+  EXPECT_NE(cells.find("[visibility] sample_points = 1000000 x rays_per_point = 1000000"), std::string::npos)
+      << cells;
+  EXPECT_NE(cells.find("scene.toml"), std::string::npos) << "names the scene file: " << cells;
+  EXPECT_NE(cells.find("2e+09"), std::string::npos) << cells;
 }
 
 TEST_F(HardCompile, NothingLeftToDrawIsAnErrorAndNothingIsWritten) {
