@@ -15,39 +15,22 @@
 #include "firmware-host/stop_signal.hpp"
 #include "model/error.hpp"
 #include "test_bundle.hpp"
+#include "two_room_kiosk.hpp"
 
 namespace walk::kiosk {
 namespace {
 
 namespace fs = std::filesystem;
 
-class DaemonTest : public ::testing::Test {
+class DaemonTest : public testing::TwoRoomKioskTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("walk_daemon_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    bundle_ = model::Bundle::open(testing::write_two_room_bundle((dir_ / "rooms.walk").string()));
-    // World = local + (100, 200, 10). Start in room A facing the door (+x).
-    config_.path = (dir_ / "kiosk.toml").string();
-    config_.bundle = (dir_ / "rooms.walk").string();
-    config_.start.x = 102.0;
-    config_.start.y = 202.0;
-    config_.start.floor_z = 10.0;
-    config_.simulation.frame_rate = 30.0;
+    TwoRoomKioskTest::SetUp();
     config_.simulation.seconds = 5.0;
-    config_.output.folder = (dir_ / "out").string();
     config_.devices.treadmill = DeviceConfig{"mock", write("t.csv", "time,speed\n0,0\n0.5,1.0\n4.5,0\n")};
     config_.devices.head_tracker = DeviceConfig{"mock", write("h.csv", "time,yaw_deg,pitch_deg\n0,0,-5\n")};
     config_.devices.dimmer_panel = DeviceConfig{"mock", write("d.csv", "time,ch0\n0,0.0\n2,0.75\n")};
     config_.dimmer_circuits = {"B"};
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    const auto path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
   }
   Summary run(testing::FakeRenderer& renderer, const std::atomic<bool>& stop) {
     Daemon daemon(config_, *bundle_, renderer, open_devices(config_.devices));
@@ -59,10 +42,6 @@ class DaemonTest : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
-
-  fs::path dir_;
-  std::unique_ptr<model::Bundle> bundle_;
-  KioskConfig config_;
 };
 
 TEST_F(DaemonTest, SimulatedWalkGoesThroughTheDoorAndWritesASummary) {

@@ -17,6 +17,7 @@
 #include "render/camera.hpp"
 #include "tests/kiosk/fake_renderer.hpp"
 #include "tests/kiosk/test_bundle.hpp"
+#include "tests/kiosk/two_room_kiosk.hpp"
 
 namespace walk::kiosk {
 namespace {
@@ -85,29 +86,12 @@ TEST(HeadSteering, GlancesDoNotTurnAndTurnsBeyondTheDeadZoneEaseIn) {
   EXPECT_EQ(s.turned(), 0.0);
 }
 
-class ScreenModeTest : public ::testing::Test {
+class ScreenModeTest : public testing::TwoRoomKioskTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("walk_screen_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    bundle_ = model::Bundle::open(testing::write_two_room_bundle((dir_ / "rooms.walk").string()));
-    config_.path = (dir_ / "kiosk.toml").string();
-    config_.bundle = (dir_ / "rooms.walk").string();
-    config_.start.x = 102.0;
-    config_.start.y = 202.0;
-    config_.start.floor_z = 10.0;
-    config_.simulation.frame_rate = 30.0;
+    TwoRoomKioskTest::SetUp();
     config_.simulation.seconds = 3.0;
-    config_.output.folder = (dir_ / "out").string();
     config_.devices.treadmill = DeviceConfig{"mock", write("t.csv", "time,speed\n0,0\n0.5,1.0\n2.5,0\n")};
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    const auto path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
   }
   std::vector<render::View> run_with_head(const std::string& trace) {
     config_.devices.head_tracker = DeviceConfig{"mock", write("h.csv", trace)};
@@ -117,9 +101,6 @@ class ScreenModeTest : public ::testing::Test {
     daemon.run(stop);
     return renderer.views;
   }
-  fs::path dir_;
-  std::unique_ptr<model::Bundle> bundle_;
-  KioskConfig config_;
 };
 
 TEST_F(ScreenModeTest, HeadYawWithoutSteeringLeavesEveryFrameUnchanged) {
