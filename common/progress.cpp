@@ -108,11 +108,16 @@ void Progress::set_fraction(double fraction, const std::string& detail) {
   maybe_show();
 }
 
+double Progress::share(std::uint64_t done) const {
+  const double fraction = fraction_.load();
+  if (fraction < 0 && total_ > 0) return std::min(1.0, double(done) / double(total_));
+  return fraction;
+}
+
 std::string Progress::line() const {
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
   const std::uint64_t done = done_.load(std::memory_order_relaxed);
-  double fraction = fraction_.load();
-  if (fraction < 0 && total_ > 0) fraction = std::min(1.0, double(done) / double(total_));
+  const double fraction = share(done);
   std::string text = task_ + ":";
   if (fraction >= 0) text += fmt::format(" {:3.0f}%,", 100.0 * fraction);
   text += total_ > 0 ? fmt::format(" {}/{} {}", done, total_, unit_) : fmt::format(" {} {}", done, unit_);
@@ -143,8 +148,7 @@ void Progress::maybe_show() {
     std::fflush(stderr);
     return;
   }
-  double fraction = fraction_.load();
-  if (fraction < 0 && total_ > 0) fraction = std::min(1.0, double(done_.load()) / double(total_));
+  const double fraction = share(done_.load(std::memory_order_relaxed));
   std::string bar;
   if (fraction >= 0) {
     const int filled = static_cast<int>(std::lround(fraction * kBarWidth));

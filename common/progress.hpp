@@ -38,6 +38,8 @@ class Progress {
 
  private:
   void maybe_show();
+  // Share of the work done, 0..1, from set_fraction or done/total; negative when neither is known.
+  [[nodiscard]] double share(std::uint64_t done) const;
   using Clock = std::chrono::steady_clock;
   std::string task_, unit_;
   std::uint64_t total_;

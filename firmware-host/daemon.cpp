@@ -239,7 +239,7 @@ void Daemon::frame(double now, double dt) {
 
   renderer_.set_dimmers(levels_);
   const double t0 = wall_seconds();
-  const bool drew = views.size() == 1 ? renderer_.draw(views.front()) : renderer_.draw_views(views);
+  const bool drew = renderer_.draw_views(views);
   renderer_.present(drew);
   summary_.frames_drawn += drew;
   const double shown = devices::monotonic_seconds();

@@ -10,6 +10,13 @@
 namespace walk::kiosk {
 namespace {
 
+// Copies `part` into `out` with its left edge at column x0 (rows top first in both).
+void paste(render::Image& out, const render::Image& part, int x0) {
+  for (int y = 0; y < part.height && y < out.height; ++y)
+    std::copy_n(&part.rgba[std::size_t(y) * part.width * 4], std::size_t(part.width) * 4,
+                &out.rgba[(std::size_t(y) * out.width + x0) * 4]);
+}
+
 // One output (a window, a full-screen monitor or an off-screen surface) showing one or more views side by
 // side: stereo eyes and screens of a spanning output each get a renderer of their own (its own refinement,
 // accumulation and governor) presented into its part of the output.
@@ -92,10 +99,7 @@ class Output {
     for (std::size_t i = 0; i < renderers_.size(); ++i) {
       const Region& at = regions_[i];
       if (at.present.buffer == render::WindowBuffer::BackRight) continue;
-      const render::Image part = renderers_[i]->read_pixels(at.width, at.height);
-      for (int y = 0; y < at.height; ++y)
-        std::copy_n(&part.rgba[std::size_t(y) * at.width * 4], std::size_t(at.width) * 4,
-                    &out.rgba[(std::size_t(y) * out.width + at.present.x) * 4]);
+      paste(out, renderers_[i]->read_pixels(at.width, at.height), at.present.x);
     }
     return out;
   }
@@ -198,9 +202,7 @@ class GlFrameRenderer final : public FrameRenderer {
     out.rgba.assign(std::size_t(out.width) * out.height * 4, 0);
     int x0 = 0;
     for (const auto& p : parts) {
-      for (int y = 0; y < p.height; ++y)
-        std::copy_n(&p.rgba[std::size_t(y) * p.width * 4], std::size_t(p.width) * 4,
-                    &out.rgba[(std::size_t(y) * out.width + x0) * 4]);
+      paste(out, p, x0);
       x0 += p.width;
     }
     return out;

@@ -76,9 +76,11 @@ void HeadSteering::update(std::optional<double> yaw, double dt, const SteeringCo
   turned_ += rate_ * dt;
 }
 
-render::View screen_view(const KioskConfig& config, const glm::dvec3& feet, double heading,
-                         const glm::dvec3& eye_offset, std::size_t screen) {
-  const render::ScreenRect s = screens_in_tracker_frame(config).at(screen);
+namespace {
+
+// The view through screen `s` (tracker frame) from nominal eye + offset, for a walker at feet facing heading.
+render::View view_through(const KioskConfig& config, const render::ScreenRect& s, const glm::dvec3& feet,
+                          double heading, const glm::dvec3& eye_offset) {
   glm::dvec3 eye = nominal_eye(config) + glm::clamp(eye_offset, -kMaxHeadOffset, kMaxHeadOffset);
   const glm::dvec3 towards_viewer =
       glm::normalize(glm::cross(s.lower_right - s.lower_left, s.upper_left - s.lower_left));
@@ -94,20 +96,26 @@ render::View screen_view(const KioskConfig& config, const glm::dvec3& feet, doub
   return view;
 }
 
+}  // namespace
+
+render::View screen_view(const KioskConfig& config, const glm::dvec3& feet, double heading,
+                         const glm::dvec3& eye_offset, std::size_t screen) {
+  return view_through(config, screens_in_tracker_frame(config).at(screen), feet, heading, eye_offset);
+}
+
 std::vector<render::View> screen_views(const KioskConfig& config, const glm::dvec3& feet, double heading,
                                        const glm::dvec3& eye_offset, double head_yaw) {
   std::vector<render::View> views;
-  const std::size_t screens = screens_in_tracker_frame(config).size();
   // The eyes sit either side of the head along its right axis: the tracker's x turned by the head's yaw.
   const glm::dvec3 half_eyes =
       0.5 * config.display.eye_separation * glm::dvec3(std::cos(head_yaw), std::sin(head_yaw), 0.0);
-  for (std::size_t s = 0; s < screens; ++s) {
+  for (const render::ScreenRect& s : screens_in_tracker_frame(config)) {
     if (!stereo(config)) {
-      views.push_back(screen_view(config, feet, heading, eye_offset, s));
+      views.push_back(view_through(config, s, feet, heading, eye_offset));
       continue;
     }
-    views.push_back(screen_view(config, feet, heading, eye_offset - half_eyes, s));
-    views.push_back(screen_view(config, feet, heading, eye_offset + half_eyes, s));
+    views.push_back(view_through(config, s, feet, heading, eye_offset - half_eyes));
+    views.push_back(view_through(config, s, feet, heading, eye_offset + half_eyes));
   }
   return views;
 }

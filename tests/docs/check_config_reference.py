@@ -51,37 +51,38 @@ def doc_sections(path):
 
 
 def nearest(keys, candidates):
-    """The candidate sharing most keys, or a placeholder when none shares any (a new table)."""
+    """The candidate sharing most keys, or None when none shares any (a new table)."""
     best = max(candidates, key=lambda c: len(keys & c[1]) - len(keys ^ c[1])) if candidates else None
-    if best is None or not keys & best[1]:
-        return ("(none: no section documents any of these keys; add one)", frozenset())
-    return best
+    return best if best is not None and keys & best[1] else None
+
+
+def unmatched(items, others, describe):
+    """A problem for each (name, keys) of items whose key set no entry of others has exactly."""
+    other_sets = {keys for _, keys in others}
+    return [describe(name, keys, nearest(keys, others)) for name, keys in items if keys not in other_sets]
 
 
 def check(source_dir, doc, files):
-    problems = []
     path = source_dir / doc
     if not path.exists():
         return [f"{doc}: missing (it must document every key of {', '.join(files)})"]
     lists, sections = code_lists(source_dir, files), doc_sections(path)
     if not lists:
         return [f"{', '.join(files)}: no only({{...}}) key lists found; has the config reader changed shape?"]
-    section_sets = {keys for _, keys in sections}
-    list_sets = {keys for _, keys in lists}
-    for where, keys in lists:
-        if keys in section_sets:
-            continue
-        heading, documented = nearest(keys, sections)
-        problems.append(
-            f"{where}: keys accepted but not documented in {doc} section '{heading}': "
-            f"{sorted(keys - documented) or '-'}; documented there but not accepted: {sorted(documented - keys) or '-'}")
-    for heading, keys in sections:
-        if keys in list_sets:
-            continue
-        where, accepted = nearest(keys, lists)
-        problems.append(
-            f"{doc} section '{heading}': keys documented but not accepted by the code list at {where}: "
-            f"{sorted(keys - accepted) or '-'}; accepted there but not documented: {sorted(accepted - keys) or '-'}")
+
+    def undocumented(where, keys, section):
+        heading, documented = section or ("(none: no section documents any of these keys; add one)", frozenset())
+        return (f"{where}: keys accepted but not documented in {doc} section '{heading}': "
+                f"{sorted(keys - documented) or '-'}; documented there but not accepted: "
+                f"{sorted(documented - keys) or '-'}")
+
+    def unaccepted(heading, keys, code_list):
+        where, accepted = code_list or ("(none: no code list accepts any of these keys)", frozenset())
+        return (f"{doc} section '{heading}': keys documented but not accepted by the code list at {where}: "
+                f"{sorted(keys - accepted) or '-'}; accepted there but not documented: "
+                f"{sorted(accepted - keys) or '-'}")
+
+    problems = unmatched(lists, sections, undocumented) + unmatched(sections, lists, unaccepted)
     if not problems:
         total = sum(len(k) for _, k in lists)
         print(f"ok   {doc}: {len(lists)} tables, {total} keys, each documented")

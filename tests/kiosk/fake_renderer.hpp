@@ -30,7 +30,7 @@ class FakeRenderer final : public FrameRenderer {
 
   std::vector<float> levels;
   std::vector<render::View> views;                   // the first view of every frame
-  std::vector<std::vector<render::View>> view_sets;  // every view of frames with more than one
+  std::vector<std::vector<render::View>> view_sets;  // every view of every frame
   std::vector<std::string> saved;
   std::function<void(std::size_t frames)> on_draw;
 };
