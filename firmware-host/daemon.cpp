@@ -98,11 +98,15 @@ void Daemon::track_visits() {
   group_ = group;
   const std::string to = room_name();
   const glm::dvec3 w = to_world(navigator_.feet());
-  if (summary_.room_sequence.empty())
+  if (summary_.room_changes == 0)
     spdlog::info("walker starts in room '{}' at ({:.2f}, {:.2f}, {:.2f})", to, w.x, w.y, w.z);
   else
     spdlog::info("room '{}' -> '{}' at ({:.2f}, {:.2f}, {:.2f})", from, to, w.x, w.y, w.z);
-  summary_.room_sequence.push_back(to);
+  // Bounded: a kiosk changes rooms thousands of times a day, so only the latest changes are kept.
+  auto& sequence = summary_.room_sequence;
+  if (sequence.size() >= Summary::kRoomSequenceKept) sequence.erase(sequence.begin());
+  sequence.push_back(to);
+  ++summary_.room_changes;
   auto& rooms = summary_.rooms_visited;
   if (std::find(rooms.begin(), rooms.end(), to) == rooms.end()) rooms.push_back(to);
 }
@@ -252,9 +256,9 @@ void Daemon::frame(double now, double dt) {
   ++summary_.frames;
 
   if (config_.output.png_every > 0.0 && now + 1e-9 >= next_png_) {
-    const auto name = fmt::format("frame_{:06d}.png", summary_.frames_saved);
-    renderer_.save_png((std::filesystem::path(config_.output.folder) / name).string());
-    ++summary_.frames_saved;
+    const auto name = fmt::format("frame_{:06d}.png", png_requests_);
+    saver_.save((std::filesystem::path(config_.output.folder) / name).string(), renderer_.capture());
+    ++png_requests_;
     next_png_ += config_.output.png_every;
   }
 }
@@ -296,6 +300,7 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
     const double now = clock.now();
     const double dt = sim ? step : std::min(now - last, kMaxRealtimeStep);
     last = now;
+    if (frame_hook_) frame_hook_(now);
     frame(now, dt);
 
     notifier_.ready();
@@ -313,6 +318,9 @@ Summary Daemon::run(const std::atomic<bool>& stop) {
     }
   }
   notifier_.stopping();
+  saver_.flush();  // the frames asked for are on disk before the summary says so
+  summary_.frames_saved = saver_.written();
+  summary_.frames_not_saved = saver_.dropped() + saver_.failed();
 
   summary_.wall_seconds = wall_seconds() - wall_start;
   summary_.fps = summary_.render_seconds > 0 ? summary_.frames_drawn / summary_.render_seconds : 0.0;

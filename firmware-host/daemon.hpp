@@ -12,6 +12,7 @@
 #include "firmware-host/clock.hpp"
 #include "firmware-host/device_factory.hpp"
 #include "firmware-host/frame_renderer.hpp"
+#include "firmware-host/frame_saver.hpp"
 #include "firmware-host/head_coupling.hpp"
 #include "firmware-host/kiosk_config.hpp"
 #include "firmware-host/latency_histogram.hpp"
@@ -38,6 +39,9 @@ class Daemon {
     reload_flag_ = &flag;
     reload_ = std::move(load);
   }
+  // Called before every frame with the frame's time on the daemon's clock. The soak test drives device
+  // polling and fault injection in simulated time through it and samples memory.
+  void set_frame_hook(std::function<void(double now)> hook) { frame_hook_ = std::move(hook); }
   // Applies a new config to the running walk: devices reopened, dimmer map, walker, display, output and
   // frame-rate settings. The bundle and start stay (they define the walk). Throws walk::Error if invalid.
   void apply(const KioskConfig& config, DeviceSet devices);
@@ -88,13 +92,16 @@ class Daemon {
   bool next_building_ = false;
   std::atomic<bool>* reload_flag_ = nullptr;
   std::function<KioskConfig()> reload_;
+  std::function<void(double now)> frame_hook_;
   std::vector<std::pair<int, double>> pending_stamps_;  // (role, hardware reading time) polled this frame
   LatencyHistogram latencies_[3];                       // bounded: a kiosk runs for months
   std::uint64_t faulty_frames_[kRoles] = {};
   double last_stamp_[3] = {-1.0, -1.0, -1.0};  // per treadmill, head tracker, panel: newest reading seen
   double next_png_ = 0.0;
+  std::uint64_t png_requests_ = 0;  // names the files: frame_000000.png, ...
   std::uint32_t cell_ = 0;
   std::optional<std::uint32_t> group_;
+  FrameSaver saver_;  // PNG encoding off the render thread
   Summary summary_;
 };
 

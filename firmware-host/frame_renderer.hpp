@@ -22,8 +22,8 @@ class FrameRenderer {
   // Several views of one frame (stereo eyes, screens of a spanning output), each in its own part of the
   // output; returns whether any drew. A renderer with one output part draws the first.
   virtual bool draw_views(std::span<const render::View> views) { return draw(views.front()); }
-  virtual void save_png(const std::string& path) = 0;                 // the picture now shown
-  [[nodiscard]] virtual render::Image capture() const { return {}; }  // the picture now shown, if it has one
+  // The picture now shown, read back on the render thread (walkd encodes and writes it on another).
+  [[nodiscard]] virtual render::Image capture() const = 0;
   virtual void present(bool /*drew*/) {}  // shows a new picture, if drawn; handles window events either way
   [[nodiscard]] virtual bool windowed() const { return false; }  // a window runs in real time
   [[nodiscard]] virtual bool close_requested() { return false; }

@@ -188,7 +188,6 @@ class GlFrameRenderer final : public FrameRenderer {
       any = outputs_[i]->draw(views.subspan(i * per_output, per_output)) || any;
     return any;
   }
-  void save_png(const std::string& path) override { render::write_png(path, capture()); }
   // Every output's picture side by side.
   [[nodiscard]] render::Image capture() const override {
     if (outputs_.size() == 1) return outputs_.front()->capture();

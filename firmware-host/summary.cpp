@@ -26,8 +26,10 @@ std::string summary_json(const Summary& s) {
   j["cells_visited"] = s.cells_visited;
   j["rooms_visited"] = s.rooms_visited;
   j["room_sequence"] = s.room_sequence;
+  j["room_changes"] = s.room_changes;
   j["distance_m"] = s.distance;
   j["frames_saved"] = s.frames_saved;
+  j["frames_not_saved"] = s.frames_not_saved;
   j["final_feet"] = vec(s.final_feet);
   j["final_eye"] = vec(s.final_eye);
   j["final_heading_deg"] = s.final_heading_deg;

@@ -9,6 +9,8 @@
 namespace walk::kiosk {
 
 struct Summary {
+  static constexpr std::size_t kRoomSequenceKept = 1000;  // the latest room changes; a kiosk runs for months
+
   std::string mode;        // "simulated" or "realtime"
   std::string stopped_by;  // "end", "signal", "window" or "next_building"
   std::string renderer;
@@ -20,10 +22,12 @@ struct Summary {
   double fps = 0.0;                // frames_drawn / render_seconds
   std::vector<std::uint32_t> cells_visited;  // in first-visit order
   std::vector<std::string> rooms_visited;    // group names, first-visit order
-  std::vector<std::string> room_sequence;    // every room change, starting with the start room
-  double distance = 0.0;                     // metres walked
-  std::uint64_t frames_saved = 0;
-  glm::dvec3 final_feet{0.0};  // world metres
+  std::vector<std::string> room_sequence;  // room changes, from the start room; the latest kRoomSequenceKept
+  std::uint64_t room_changes = 0;          // all of them, the start room counted
+  double distance = 0.0;                   // metres walked
+  std::uint64_t frames_saved = 0;          // PNGs written (encoded off the render thread)
+  std::uint64_t frames_not_saved = 0;      // dropped by a full save queue or failed to write (logged)
+  glm::dvec3 final_feet{0.0};              // world metres
   glm::dvec3 final_eye{0.0};
   double final_heading_deg = 0.0;
   std::string final_room;

@@ -118,8 +118,11 @@ TEST_F(DaemonTest, SavesAFrameEveryNSimulatedSeconds) {
   std::atomic<bool> stop{false};
   const Summary s = run(renderer, stop);
   EXPECT_EQ(s.frames_saved, 3u);  // t = 0, 2, 4
-  ASSERT_EQ(renderer.saved.size(), 3u);
-  EXPECT_TRUE(fs::exists(renderer.saved.front()));
+  EXPECT_EQ(s.frames_not_saved, 0u);
+  EXPECT_EQ(renderer.captures, 3u);
+  for (const char* name : {"frame_000000.png", "frame_000001.png", "frame_000002.png"})
+    EXPECT_TRUE(fs::exists(dir_ / "out" / name)) << name;  // written by the saver thread, flushed at the end
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "frame_000000.png.part"));
 }
 
 TEST_F(DaemonTest, UnknownCircuitAndBadStartAreReportedWithTheirKeys) {
@@ -178,7 +181,7 @@ TEST_F(DaemonTest, StillKioskStopsDrawingOnceRefinedAndDimmersWakeIt) {
       drew.push_back(inner->draw(v));
       return drew.back();
     }
-    void save_png(const std::string& path) override { inner->save_png(path); }
+    render::Image capture() const override { return inner->capture(); }
     std::unique_ptr<FrameRenderer> inner;
     std::vector<bool> drew;
   };

@@ -2,7 +2,6 @@
 // A FrameRenderer without GL: records what the loop asked for, and can request a stop mid-run.
 #include <atomic>
 #include <csignal>
-#include <fstream>
 #include <functional>
 #include <vector>
 
@@ -23,15 +22,15 @@ class FakeRenderer final : public FrameRenderer {
     view_sets.emplace_back(v.begin(), v.end());
     return draw(v.front());
   }
-  void save_png(const std::string& path) override {
-    std::ofstream(path) << "png";
-    saved.push_back(path);
+  [[nodiscard]] render::Image capture() const override {
+    ++captures;
+    return render::Image{2, 2, std::vector<std::uint8_t>(16, 128)};
   }
 
   std::vector<float> levels;
   std::vector<render::View> views;                   // the first view of every frame
   std::vector<std::vector<render::View>> view_sets;  // every view of every frame
-  std::vector<std::string> saved;
+  mutable std::size_t captures = 0;
   std::function<void(std::size_t frames)> on_draw;
 };
 

@@ -41,9 +41,7 @@ class GlProbeRenderer final : public FrameRenderer {
     if (on_draw) on_draw(brightness.size());
     return true;
   }
-  void save_png(const std::string& path) override {
-    render::write_png(path, renderer_->read_pixels(width_, height_));
-  }
+  [[nodiscard]] render::Image capture() const override { return renderer_->read_pixels(width_, height_); }
 
   std::vector<float> levels;
   std::vector<double> brightness;  // per frame, mean of R, G, B in 0..255
