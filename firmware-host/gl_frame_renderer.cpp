@@ -23,7 +23,10 @@ void paste(render::Image& out, const render::Image& part, int x0) {
 class Output {
  public:
   Output(const model::Bundle& bundle, const DisplayConfig& display, int monitor, double views_in_frame)
-      : bundle_(bundle), refine_(display.refine), target_hz_(display.target_hz * views_in_frame) {
+      : bundle_(bundle),
+        refine_(display.refine),
+        target_hz_(display.target_hz * views_in_frame),
+        frame_timing_(render::parse_frame_timing(display.frame_timing).value_or(render::FrameTiming::Auto)) {
     render::BackendOptions options;
     options.kind = render::parse_backend_kind(display.backend);
     options.width = display.width;
@@ -146,6 +149,7 @@ class Output {
       r.set_present_region(regions_[i].present);
       // Every view's share of the frame: each governor holds (views in the whole frame) x the frame rate.
       r.set_target_rate(target_hz_ * double(views));
+      r.set_frame_timing(frame_timing_);
       if (!levels_.empty()) r.set_dimmers(levels_);
     }
   }
@@ -153,6 +157,7 @@ class Output {
   const model::Bundle& bundle_;
   bool refine_;
   double target_hz_;  // the frame rate times the views drawn on the other outputs
+  render::FrameTiming frame_timing_;
   bool quad_requested_ = false, quad_buffer_ = false, drew_ = false;
   std::unique_ptr<render::Backend> backend_;
   std::vector<std::unique_ptr<render::Renderer>> renderers_;

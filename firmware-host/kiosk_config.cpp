@@ -10,6 +10,7 @@
 #include "firmware-host/device_config.hpp"
 #include "firmware-host/toml_section.hpp"
 #include "model/error.hpp"
+#include "render/gpu_timer.hpp"
 
 namespace walk::kiosk {
 namespace {
@@ -133,7 +134,7 @@ KioskConfig load_kiosk_config(const std::string& path) {
   if (auto s = top.table("display")) {
     s->only({"mode", "screen", "screens", "outputs", "stereo", "eye_separation", "nominal_eye",
              "tracking_ease", "backend", "width", "height", "fullscreen", "monitor", "drm_device",
-             "fov_y_deg", "refine", "target_hz"});
+             "fov_y_deg", "refine", "target_hz", "frame_timing"});
     c.display.mode = s->string("mode").value_or(c.display.mode);
     if (c.display.mode != "screen" && c.display.mode != "hmd")
       s->fail("mode",
@@ -175,6 +176,10 @@ KioskConfig load_kiosk_config(const std::string& path) {
     c.display.drm_device = s->string("drm_device").value_or(c.display.drm_device);
     c.display.refine = s->boolean("refine", c.display.refine);
     c.display.target_hz = s->number("target_hz", c.display.target_hz, 1.0, 480.0);
+    c.display.frame_timing = s->string("frame_timing").value_or(c.display.frame_timing);
+    if (!render::parse_frame_timing(c.display.frame_timing))
+      s->fail("frame_timing",
+              "unknown frame timing '" + c.display.frame_timing + "' (auto, finish or queries)");
     c.display.width = s->integer("width", c.display.width, 16, 16384);
     c.display.height = s->integer("height", c.display.height, 16, 16384);
     c.display.fullscreen = s->boolean("fullscreen", c.display.fullscreen);

@@ -44,6 +44,9 @@ struct DisplayConfig {
   // false: every frame at full quality (for comparison).
   bool refine = true;
   double target_hz = 60.0;
+  // How the governor times frames: auto (GL timer queries on hardware GPUs, glFinish on software
+  // rasterizers), finish or queries (render/gpu_timer.hpp).
+  std::string frame_timing = "auto";
 };
 
 struct StartConfig {

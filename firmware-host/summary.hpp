@@ -9,7 +9,7 @@
 namespace walk::kiosk {
 
 struct Summary {
-  static constexpr std::size_t kRoomSequenceKept = 1000;  // the latest room changes; a kiosk runs for months
+  static constexpr std::size_t kRoomSequenceKept = 256;  // the latest room changes; a kiosk runs for months
 
   std::string mode;        // "simulated" or "realtime"
   std::string stopped_by;  // "end", "signal", "window" or "next_building"

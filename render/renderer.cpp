@@ -106,6 +106,11 @@ struct Renderer::Impl {
   FrameGovernor governor;
   std::optional<MovingLevel> pinned_level;
   MovingLevel moving_level = MovingLevel::Patches;
+  FrameTiming frame_timing = FrameTiming::Auto;
+  std::optional<bool> by_queries;     // frame_timing resolved in the current context, on first use
+  std::optional<GpuTimer> gpu_timer;  // only when timing by queries
+  bool use_queries();
+  void learn_from_timer();
   std::vector<JitterSample> jitter = jitter_pattern(schedule.settings().aa_samples);
   std::optional<View> shown_view;
   int shown_width = 0, shown_height = 0;
@@ -411,6 +416,36 @@ void Renderer::set_refine_settings(const RefineSettings& settings) {
   impl_->schedule = RefineSchedule(settings);
   impl_->jitter = jitter_pattern(impl_->schedule.settings().aa_samples);
   impl_->restart = true;
+}
+void Renderer::set_frame_timing(FrameTiming timing) {
+  impl_->frame_timing = timing;
+  impl_->by_queries.reset();
+  impl_->gpu_timer.reset();
+}
+bool Renderer::timing_by_queries() const {
+  return impl_->use_queries();
+}
+bool Renderer::Impl::use_queries() {
+  if (!by_queries) {
+    const bool wanted =
+        frame_timing == FrameTiming::Queries || (frame_timing == FrameTiming::Auto && !software_rasterizer());
+    by_queries = wanted && timer_queries_supported();
+    if (*by_queries) gpu_timer.emplace();
+  }
+  return *by_queries;
+}
+// Frames whose queries have finished teach the governor, each for the cell and level it was drawn at. A frame
+// holds the display for its CPU submission or its GPU time, whichever is longer.
+void Renderer::Impl::learn_from_timer() {
+  while (auto done = gpu_timer->ready()) {
+    const auto& [frame, gpu] = *done;
+    const double ms = std::max(frame.cpu_ms, gpu);
+    if (frame.moving)
+      governor.record_moving(frame.cell, MovingLevel(frame.level), ms, frame.triangles);
+    else
+      governor.record_sample(ms / double(frame.samples));
+    stats.gpu_ms = gpu;
+  }
 }
 void Renderer::set_target_rate(double hz) {
   impl_->governor = FrameGovernor(hz);
@@ -781,14 +816,22 @@ bool Renderer::refine(const View& view, int width, int height) {
     const bool moving = step.stage == RefineStage::Moving;
     const float resolution = moving && r.moving_level == MovingLevel::Reduced ? 0.5f : 1.0f;
     const float lod_pixels = moving ? moving_error_pixels(r.moving_level) : 0.0f;
+    const bool queries = moving && r.use_queries();
+    if (queries) r.gpu_timer->begin();
     r.draw_scene(view, width, height,
                  DrawOptions{step.patch_weight, 0.0f, 0.0f, resolution, step.diagonals, lod_pixels});
     r.stats.samples = 1;
     if (moving) {
       r.stats.moving_level = r.moving_level;
-      glFinish();
-      r.governor.record_moving(r.stats.cell, r.moving_level, milliseconds_since(start),
-                               double(r.stats.triangles_drawn));
+      if (queries) {
+        r.gpu_timer->end({true, r.stats.cell, std::uint8_t(r.moving_level), double(r.stats.triangles_drawn),
+                          1, milliseconds_since(start)});
+        r.learn_from_timer();
+      } else {
+        glFinish();
+        r.governor.record_moving(r.stats.cell, r.moving_level, milliseconds_since(start),
+                                 double(r.stats.triangles_drawn));
+      }
     }
   } else {
     if (!r.accumulator) r.accumulator.emplace();
@@ -796,6 +839,8 @@ bool Renderer::refine(const View& view, int width, int height) {
     // As many samples as the governor says fit in one frame; the last one drawn ends this step.
     const int fixed = r.schedule.settings().samples_per_frame;
     const int budget = fixed > 0 ? fixed : r.governor.samples_per_frame();
+    const bool queries = r.use_queries();
+    if (queries) r.gpu_timer->begin();
     int drawn = 0;
     for (;;) {
       const JitterSample& j = r.jitter[std::size_t(step.sample) % r.jitter.size()];
@@ -805,8 +850,13 @@ bool Renderer::refine(const View& view, int width, int height) {
       step = r.schedule.next();
     }
     r.accumulator->resolve(r.framebuffer.id());
-    glFinish();
-    r.governor.record_sample(milliseconds_since(start) / double(drawn));
+    if (queries) {
+      r.gpu_timer->end({false, 0, 0, -1.0, drawn, milliseconds_since(start)});
+      r.learn_from_timer();
+    } else {
+      glFinish();
+      r.governor.record_sample(milliseconds_since(start) / double(drawn));
+    }
     r.stats.samples = r.accumulator->samples();
     r.stats.stage = RefineStage::Accumulating;
   }

@@ -11,6 +11,7 @@
 
 #include "model/bundle.hpp"
 #include "render/governor.hpp"
+#include "render/gpu_timer.hpp"
 #include "render/refine_schedule.hpp"
 
 namespace walk::render {
@@ -80,6 +81,7 @@ struct FrameStats {
   std::uint32_t quads_flipped = 0;     // quads split differently from the bundle at the last diagonal choice
   std::uint32_t quads_subdivided = 0;  // quads drawn as bilinear sub-quads at the last choice
   std::uint32_t subdivision_triangles = 0;
+  double gpu_ms = -1.0;  // GPU time of the newest frame timed by queries (it lags a frame or two); -1: none
 };
 
 class Renderer {
@@ -123,8 +125,14 @@ class Renderer {
   // Adaptive refinement, the kiosk's per-frame call: a moving view is drawn at the level the frame-rate
   // governor picks for the eye's cell; a still view is refined step by step (patches blended in, then
   // jittered samples accumulated); once converged, nothing is drawn until the view, size, dimmers or settings
-  // change. Returns whether it drew. Times each step with glFinish to feed the governor.
+  // change. Returns whether it drew. Times moving frames and accumulation steps for the governor as
+  // set_frame_timing says.
   bool refine(const View& view, int width, int height);
+  // Auto (the default): GL timer queries on hardware drivers, glFinish and the CPU clock on software
+  // rasterizers (render/gpu_timer.hpp says why). Queries falls back to Finish where the driver's counter
+  // has no bits.
+  void set_frame_timing(FrameTiming timing);
+  [[nodiscard]] bool timing_by_queries() const;  // what refine() uses in the current context
   void set_refine_settings(const RefineSettings& settings);
   // Frame rate the governor holds (default 60).
   void set_target_rate(double hz);

@@ -88,14 +88,19 @@ png_every = 2
 TEST_F(KioskConfigTest, DisplayTakesGbmAndTheRefinementKnobs) {
   const auto c = load_kiosk_config(write(std::string(kMinimal) +
                                          "[display]\nbackend = \"gbm\"\nmonitor = 1\ndrm_device = "
-                                         "\"/dev/dri/card1\"\nrefine = false\ntarget_hz = 75\n"));
+                                         "\"/dev/dri/card1\"\nrefine = false\ntarget_hz = 75\n"
+                                         "frame_timing = \"queries\"\n"));
   EXPECT_EQ(c.display.backend, "gbm");
   EXPECT_EQ(c.display.monitor, 1);
   EXPECT_EQ(c.display.drm_device, "/dev/dri/card1");
   EXPECT_FALSE(c.display.refine);
   EXPECT_DOUBLE_EQ(c.display.target_hz, 75.0);
+  EXPECT_EQ(c.display.frame_timing, "queries");
   const auto msg = error_of(std::string(kMinimal) + "[display]\ntarget_hz = 0\n");
   EXPECT_NE(msg.find("display.target_hz"), std::string::npos) << msg;
+  const auto timing = error_of(std::string(kMinimal) + "[display]\nframe_timing = \"gpu\"\n");
+  EXPECT_NE(timing.find("display.frame_timing"), std::string::npos) << timing;
+  EXPECT_NE(timing.find("auto, finish or queries"), std::string::npos) << timing;
 }
 
 TEST_F(KioskConfigTest, MinimalConfigUsesDefaults) {
