@@ -4,5 +4,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 build_dir=${WALK_BUILD_DIR:-build}
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=${WALK_BUILD_TYPE:-RelWithDebInfo} >/dev/null
+# CI (WALK_CI set, as .ci/run does) fails on any compiler warning; a developer's build only shows them.
+werror=OFF
+[ -n "${WALK_CI:-}" ] && werror=ON
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=${WALK_BUILD_TYPE:-RelWithDebInfo} \
+  -DWALK_WARNINGS_AS_ERRORS=$werror >/dev/null
 ninja -C "$build_dir" -j"$(nproc)"

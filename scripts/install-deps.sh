@@ -18,8 +18,8 @@ packages=(
   libmeshoptimizer-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
-  # the Debian package: man pages from --help, and its check
-  help2man lintian
+  # the Debian package: man pages from --help, and its check; the source format check
+  help2man lintian clang-format
   # reference ray caster compared side by side with ours (optional at build time)
   libembree-dev
   # model import: meshes (OBJ, glTF, 3DS...) through assimp; clang + compiler-rt for the libFuzzer targets

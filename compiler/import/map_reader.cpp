@@ -54,10 +54,10 @@ constexpr double kLargestEntityInteger = 1e6;
 int integer_or(const MapEntity& e, const std::string& key, int fallback, const std::string& file) {
   const double v = number_or(e, key, fallback, file);
   if (std::abs(v) > kLargestEntityInteger || v != std::floor(v))
-    throw Error(located(file, e.line,
-                        "entity key \"" + key + "\" needs a whole number up to 1000000, found \"" + e.keys.at(key) +
-                            "\"",
-                        "fix the entity's value"));
+    throw Error(located(
+        file, e.line,
+        "entity key \"" + key + "\" needs a whole number up to 1000000, found \"" + e.keys.at(key) + "\"",
+        "fix the entity's value"));
   return static_cast<int>(v);
 }
 

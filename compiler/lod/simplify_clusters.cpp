@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "common/progress.hpp"
 #include "common/parallel_for.hpp"
+#include "common/progress.hpp"
 #include "model/model.hpp"
 
 namespace walk::compiler {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <utility>
 
-#include "common/progress.hpp"
 #include "common/parallel_for.hpp"
+#include "common/progress.hpp"
 #include "compiler/visibility/vis_items.hpp"
 
 namespace walk::compiler {

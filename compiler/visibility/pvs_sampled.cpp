@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "common/progress.hpp"
 #include "common/parallel_for.hpp"
+#include "common/progress.hpp"
 #include "compiler/visibility/trace_through_glass.hpp"
 
 namespace walk::compiler {

@@ -22,7 +22,9 @@ void log_glfw_error(int code, const char* description) {
 // GLFW is initialised once for all windows (several outputs each have one) and terminated with the last:
 // glfwTerminate destroys every window, so no backend may call it while another lives. GL runs on one thread.
 int g_glfw_users = 0;
-bool acquire_glfw() { return g_glfw_users++ > 0 || glfwInit(); }
+bool acquire_glfw() {
+  return g_glfw_users++ > 0 || glfwInit();
+}
 void release_glfw() {
   if (--g_glfw_users == 0) glfwTerminate();
 }

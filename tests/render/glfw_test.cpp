@@ -76,7 +76,7 @@ TEST(GlfwBackend, RenderersPresentIntoTheirOwnRegionsAndStereoFallsBackToMono) {
   left.set_present_to_window(true);
   right.set_present_to_window(true);
   right.set_present_region({kWidth, 0, WindowBuffer::Back});
-  left.draw(looking_along_x(-1.0), kWidth, kHeight);  // A's outer wall
+  left.draw(looking_along_x(-1.0), kWidth, kHeight);   // A's outer wall
   right.draw(looking_along_x(+1.0), kWidth, kHeight);  // through the opening
   std::vector<std::uint8_t> window(std::size_t(2 * kWidth) * kHeight * 4);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
