@@ -257,7 +257,8 @@ void Daemon::frame(double now, double dt) {
 
   if (config_.output.png_every > 0.0 && now + 1e-9 >= next_png_) {
     const auto name = fmt::format("frame_{:06d}.png", png_requests_);
-    saver_.save((std::filesystem::path(config_.output.folder) / name).string(), renderer_.capture());
+    saver_.save((std::filesystem::path(config_.output.folder) / name).string(), renderer_.capture(),
+                simulated() ? FrameSaver::WhenFull::Wait : FrameSaver::WhenFull::Drop);
     ++png_requests_;
     next_png_ += config_.output.png_every;
   }

@@ -11,7 +11,7 @@ constexpr double kDegrees = std::numbers::pi / 180.0;
 
 // Ranges are checked on what the file says; defaults computed from other keys (a Modbus panel's stale_after
 // from its poll rate, retry_max from a larger retry_min) are fitted, not reported as the user's mistake.
-devices::FaultPolicy faults(const Section& s, devices::FaultPolicy p) {
+devices::FaultPolicy faults(const TomlTable& s, devices::FaultPolicy p) {
   p.stale_after = s.raw().get("stale_after") ? s.number("stale_after", p.stale_after, 0.001, 3600.0)
                                              : std::clamp(p.stale_after, 0.001, 3600.0);
   p.retry_min = s.number("retry_min", p.retry_min, 0.0, 3600.0);
@@ -21,11 +21,11 @@ devices::FaultPolicy faults(const Section& s, devices::FaultPolicy p) {
   return p;
 }
 
-std::uint8_t byte_value(const Section& s, const std::string& key, int fallback) {
+std::uint8_t byte_value(const TomlTable& s, const std::string& key, int fallback) {
   return static_cast<std::uint8_t>(s.integer(key, fallback, 0, 255));
 }
 
-devices::HidField hid_field(const Section& f) {
+devices::HidField hid_field(const TomlTable& f) {
   f.only({"name", "offset", "size", "signed", "big_endian", "scale", "bias", "min", "max", "unit"});
   devices::HidField h;
   const auto name = f.string("name");
@@ -46,7 +46,7 @@ devices::HidField hid_field(const Section& f) {
   return h;
 }
 
-devices::HidReportLayout hid_layout(const Section& s) {
+devices::HidReportLayout hid_layout(const TomlTable& s) {
   s.only({"id", "length", "fields"});
   devices::HidReportLayout l;
   if (s.raw().get("id")) l.report_id = byte_value(s, "id", 0);
@@ -58,7 +58,7 @@ devices::HidReportLayout hid_layout(const Section& s) {
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const toml::table* t = arr->get(i)->as_table();
     if (!t) s.fail("fields", "every field must be a table {name = ..., offset = ..., ...}");
-    l.fields.push_back(hid_field(Section(*t, s.file(), s.path("fields[" + std::to_string(i) + "]"))));
+    l.fields.push_back(hid_field(TomlTable(*t, s.file(), s.key_path("fields[" + std::to_string(i) + "]"))));
   }
   if (const auto problem = l.check(); !problem.empty()) s.fail("", problem);
   return l;
@@ -66,7 +66,7 @@ devices::HidReportLayout hid_layout(const Section& s) {
 
 }  // namespace
 
-DeviceConfig read_device(const Section& s, DeviceRole role, const std::string& dir) {
+DeviceConfig read_device(const TomlTable& s, DeviceRole role, const std::string& dir) {
   DeviceConfig d;
   d.line = static_cast<int>(s.raw().source().begin.line);
   d.backend = s.string("backend").value_or("mock");

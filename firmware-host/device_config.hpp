@@ -4,12 +4,12 @@
 #include <string>
 
 #include "firmware-host/kiosk_config.hpp"
-#include "firmware-host/toml_section.hpp"
+#include "model/toml_table.hpp"
 
 namespace walk::kiosk {
 
 enum class DeviceRole { Treadmill, HeadTracker, DimmerPanel, Buttons };
 
-[[nodiscard]] DeviceConfig read_device(const Section& s, DeviceRole role, const std::string& config_dir);
+[[nodiscard]] DeviceConfig read_device(const TomlTable& s, DeviceRole role, const std::string& config_dir);
 
 }  // namespace walk::kiosk

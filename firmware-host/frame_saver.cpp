@@ -17,9 +17,10 @@ FrameSaver::~FrameSaver() {
   thread_.join();
 }
 
-bool FrameSaver::save(std::string path, render::Image image) {
+bool FrameSaver::save(std::string path, render::Image image, WhenFull full) {
   {
-    std::lock_guard lock(mutex_);
+    std::unique_lock lock(mutex_);
+    if (full == WhenFull::Wait) room_.wait(lock, [this] { return queue_.size() < kMaxQueued; });
     if (queue_.size() >= kMaxQueued) {
       ++dropped_;
       if (!dropping_)
@@ -49,6 +50,7 @@ void FrameSaver::work() {
     if (queue_.empty()) return;  // stopping, nothing left
     auto [path, image] = std::move(queue_.front());
     queue_.pop_front();
+    room_.notify_all();
     busy_ = true;
     lock.unlock();
     bool ok = true;

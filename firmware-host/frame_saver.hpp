@@ -24,8 +24,11 @@ class FrameSaver {
   FrameSaver(const FrameSaver&) = delete;
   FrameSaver& operator=(const FrameSaver&) = delete;
 
-  // Queues `image` for `path`; false (and counted as dropped) when kMaxQueued saves are already waiting.
-  bool save(std::string path, render::Image image);
+  // What save() does when kMaxQueued saves are waiting: a real-time kiosk drops the frame (counted), a
+  // simulated run, which has no deadline and must be deterministic, waits for room.
+  enum class WhenFull : std::uint8_t { Drop, Wait };
+  // Queues `image` for `path`; false (and counted as dropped) when the queue is full and `full` is Drop.
+  bool save(std::string path, render::Image image, WhenFull full = WhenFull::Drop);
   void flush();  // returns once every queued save has been written or has failed
 
   [[nodiscard]] std::uint64_t written() const;
@@ -36,7 +39,7 @@ class FrameSaver {
   void work();
 
   mutable std::mutex mutex_;
-  std::condition_variable wake_, idle_;
+  std::condition_variable wake_, idle_, room_;
   std::deque<std::pair<std::string, render::Image>> queue_;
   bool busy_ = false, stopping_ = false, dropping_ = false;
   std::uint64_t written_ = 0, dropped_ = 0, failed_ = 0;

@@ -8,9 +8,8 @@
 #include <numbers>
 
 #include "firmware-host/device_config.hpp"
-#include "firmware-host/toml_section.hpp"
 #include "model/error.hpp"
-#include "render/gpu_timer.hpp"
+#include "model/toml_table.hpp"
 
 namespace walk::kiosk {
 namespace {
@@ -30,7 +29,7 @@ constexpr double kCornerTolerance = 0.01;
 // The nominal eye must be at least this far in front of the screen (metres), or the view is degenerate.
 constexpr double kMinEyeToScreen = 0.05;
 
-glm::dvec3 point(const Section& s, const std::string& key) {
+glm::dvec3 point(const TomlTable& s, const std::string& key) {
   const toml::node* n = s.raw().get(key);
   const toml::array* a = n ? n->as_array() : nullptr;
   if (!a || a->size() != 3)
@@ -45,7 +44,7 @@ glm::dvec3 point(const Section& s, const std::string& key) {
   return p;
 }
 
-ScreenCorners read_screen(const Section& s) {
+ScreenCorners read_screen(const TomlTable& s) {
   s.only({"lower_left", "lower_right", "upper_left", "upper_right"});
   for (const char* key : {"lower_left", "lower_right", "upper_left"})
     if (!s.raw().get(key))
@@ -68,7 +67,7 @@ ScreenCorners read_screen(const Section& s) {
   return c;
 }
 
-SteeringConfig read_steering(const Section& s) {
+SteeringConfig read_steering(const TomlTable& s) {
   s.only({"head_turn", "dead_zone_deg", "turn_gain", "max_turn_deg_s", "ease_seconds"});
   SteeringConfig c;
   c.head_turn = s.boolean("head_turn", c.head_turn);
@@ -79,7 +78,7 @@ SteeringConfig read_steering(const Section& s) {
   return c;
 }
 
-StartConfig read_start(const Section& start) {
+StartConfig read_start(const TomlTable& start) {
   start.only({"x", "y", "floor_z", "eye_z", "heading_deg"});
   const auto x = start.number("x"), y = start.number("y");
   if (!x) start.fail("", "missing key 'x'");
@@ -98,14 +97,9 @@ StartConfig read_start(const Section& start) {
 
 KioskConfig load_kiosk_config(const std::string& path) {
   if (!fs::exists(path)) throw Error(located(path, 0, "kiosk config not found"));
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw Error(located(path, e.source().begin.line, std::string(e.description())));
-  }
+  const toml::table root = parse_toml_file(path);
   const std::string dir = fs::path(path).parent_path().string();
-  const Section top(root, path, "");
+  const TomlTable top(root, path, "");
   top.only({"bundle", "buildings", "display", "start", "walker", "steering", "devices", "dimmers",
             "simulation", "output"});
 
@@ -121,7 +115,7 @@ KioskConfig load_kiosk_config(const std::string& path) {
     for (std::size_t i = 0; i < arr->size(); ++i) {
       const toml::table* t = arr->get(i)->as_table();
       if (!t) top.fail("buildings", "expected [[buildings]] tables, each with bundle and [start]");
-      const Section b(*t, path, "buildings[" + std::to_string(i) + "]");
+      const TomlTable b(*t, path, "buildings[" + std::to_string(i) + "]");
       b.only({"bundle", "start"});
       const auto file = b.string("bundle");
       if (!file) b.fail("", "missing key 'bundle'");
@@ -149,7 +143,7 @@ KioskConfig load_kiosk_config(const std::string& path) {
         const toml::table* t = arr->get(i)->as_table();
         if (!t) s->fail("screens", "expected [[display.screens]] tables, each with corners");
         c.display.screens.push_back(
-            read_screen(Section(*t, path, "display.screens[" + std::to_string(i) + "]")));
+            read_screen(TomlTable(*t, path, "display.screens[" + std::to_string(i) + "]")));
       }
       if (c.display.screens.size() > 8) s->fail("screens", "at most 8 screens");
     }
@@ -177,7 +171,9 @@ KioskConfig load_kiosk_config(const std::string& path) {
     c.display.refine = s->boolean("refine", c.display.refine);
     c.display.target_hz = s->number("target_hz", c.display.target_hz, 1.0, 480.0);
     c.display.frame_timing = s->string("frame_timing").value_or(c.display.frame_timing);
-    if (!render::parse_frame_timing(c.display.frame_timing))
+    // render::parse_frame_timing reads these at start; checked here so the config reader needs no GL.
+    const auto& timing = c.display.frame_timing;
+    if (timing != "auto" && timing != "finish" && timing != "queries")
       s->fail("frame_timing",
               "unknown frame timing '" + c.display.frame_timing + "' (auto, finish or queries)");
     c.display.width = s->integer("width", c.display.width, 16, 16384);
@@ -228,7 +224,7 @@ KioskConfig load_kiosk_config(const std::string& path) {
 
   if (auto s = top.table("dimmers")) {
     s->only({"channels"});
-    c.dimmer_circuits = s->strings("channels");
+    c.dimmer_circuits = s->strings("channels").value_or(std::vector<std::string>{});
   }
 
   if (auto s = top.table("simulation")) {

@@ -45,14 +45,14 @@ build hid_report_fuzzer "$src"/fuzz/hid_report_fuzzer.cpp "$src"/devices/hid/rep
 # U+00A1..U+0499, U+2C3E..U+3037 and U+FB26..U+FEFE, a defect in the system header that we cannot mend and
 # that the shipped build survives (SceneConfigTest.NonAsciiNamesAndCommentsLoadAsWritten); everything else
 # stays checked.
-build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_toml_fuzzer.cpp "$src"/compiler/scene/{scene_config,toml_access,units}.cpp \
+build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_toml_fuzzer.cpp "$src"/compiler/scene/{scene_config,units}.cpp "$src"/model/toml_table.cpp \
   "$src"/compiler/visibility/visibility_config.cpp \
   "${common[@]}" -ltomlplusplus -lspdlog -lfmt
 build modbus_registers_fuzzer "$src"/fuzz/modbus_registers_fuzzer.cpp "$src"/devices/modbus/register_levels.cpp -lfmt
 # The kiosk config goes through toml++ too: the same two flags, for the same reasons.
 build kiosk_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/kiosk_toml_fuzzer.cpp \
   "$src"/firmware-host/{kiosk_config,device_config}.cpp "$src"/devices/hid/report_layout.cpp "$src"/devices/devices.cpp \
-  "$src"/model/error.cpp -ltomlplusplus -lfmt
+  "$src"/model/{error,toml_table}.cpp -ltomlplusplus -lfmt
 status=0
 for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml; do
   corpus="$out/corpus-$kind"

@@ -9,9 +9,9 @@
 #include <numbers>
 
 #include "compiler/raycast/ray_caster.hpp"
-#include "compiler/scene/toml_access.hpp"
 #include "compiler/scene/units.hpp"
 #include "model/error.hpp"
+#include "model/toml_table.hpp"
 
 namespace walk::compiler {
 namespace {

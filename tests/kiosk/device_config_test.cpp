@@ -111,11 +111,12 @@ TEST_F(DeviceConfigTest, ReportLayoutsSayWhatIsMissingOrImpossible) {
   const std::string no_length = error(
       "[devices.treadmill]\nbackend = \"hid\"\npath = \"/dev/x\"\n"
       "[devices.treadmill.report]\nfields = [{ name = \"speed\", size = 2 }]\n");
-  EXPECT_NE(no_length.find("devices.treadmill.report: missing key 'length'"), std::string::npos) << no_length;
+  EXPECT_NE(no_length.find("key 'devices.treadmill.report': missing key 'length'"), std::string::npos)
+      << no_length;
   const std::string three = error(
       "[devices.treadmill]\nbackend = \"hid\"\npath = \"/dev/x\"\n"
       "[devices.treadmill.report]\nlength = 4\nfields = [{ name = \"speed\", size = 3 }]\n");
-  EXPECT_NE(three.find("fields[0].size: must be 1, 2 or 4 bytes"), std::string::npos) << three;
+  EXPECT_NE(three.find("fields[0].size': must be 1, 2 or 4 bytes"), std::string::npos) << three;
 }
 
 TEST_F(DeviceConfigTest, MistakesNameTheKeyAndLine) {
@@ -128,7 +129,7 @@ TEST_F(DeviceConfigTest, MistakesNameTheKeyAndLine) {
                 .find("past the report length"),
             std::string::npos);
   EXPECT_NE(error("[devices.dimmer_panel]\nbackend = \"modbus\"\nregisters = [0]\ntransport = \"udp\"\n")
-                .find("kiosk.toml:8: devices.dimmer_panel.transport: unknown transport"),
+                .find("kiosk.toml:8: key 'devices.dimmer_panel.transport': unknown transport"),
             std::string::npos)
       << error("[devices.dimmer_panel]\nbackend = \"modbus\"\nregisters = [0]\ntransport = \"udp\"\n");
   EXPECT_NE(

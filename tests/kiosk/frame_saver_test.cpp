@@ -60,6 +60,17 @@ TEST_F(FrameSaverTest, AFullQueueDropsInsteadOfGrowing) {
   EXPECT_EQ(saver.written(), std::uint64_t(accepted));
 }
 
+TEST_F(FrameSaverTest, WaitingForRoomLosesNothing) {
+  const render::Image big = noise(640, 480);
+  FrameSaver saver;
+  constexpr int kSaves = 6;
+  for (int i = 0; i < kSaves; ++i)
+    EXPECT_TRUE(saver.save((dir_ / (std::to_string(i) + ".png")).string(), big, FrameSaver::WhenFull::Wait));
+  saver.flush();
+  EXPECT_EQ(saver.written(), std::uint64_t(kSaves));
+  EXPECT_EQ(saver.dropped(), 0u);
+}
+
 TEST_F(FrameSaverTest, AFailedWriteIsCountedAndLeavesNoPartialFile) {
   FrameSaver saver;
   const fs::path missing = dir_ / "no-such-folder" / "frame.png";

@@ -294,7 +294,7 @@ TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
   };
   const std::string skew = error(
       "[display.screen]\nlower_left = [-1, 1, 1]\nlower_right = [1, 1, 1]\nupper_left = [-0.5, 1, 2]\n");
-  EXPECT_NE(skew.find("display.screen.upper_left: corners do not form a rectangle"), std::string::npos)
+  EXPECT_NE(skew.find("key 'display.screen.upper_left': corners do not form a rectangle"), std::string::npos)
       << skew;
   const std::string fourth = error(
       "[display.screen]\nlower_left = [-1, 1, 1]\nlower_right = [1, 1, 1]\nupper_left = [-1, 1, 2]\n"
@@ -302,14 +302,16 @@ TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
   EXPECT_NE(fourth.find("display.screen.upper_right"), std::string::npos) << fourth;
   const std::string behind =
       error("[display.screen]\nlower_left = [1, 1, 1]\nlower_right = [-1, 1, 1]\nupper_left = [1, 1, 2]\n");
-  EXPECT_NE(behind.find("display.screen: the nominal eye is not in front of the screen"), std::string::npos)
+  EXPECT_NE(behind.find("key 'display.screen': the nominal eye is not in front of the screen"),
+            std::string::npos)
       << behind;
   const std::string missing = error("[display.screen]\nlower_left = [-1, 1, 1]\nupper_left = [-1, 1, 2]\n");
   EXPECT_NE(missing.find("missing key 'lower_right'"), std::string::npos) << missing;
   const std::string gbm = error("[display]\nbackend = \"gbm\"\noutputs = \"monitors\"\n");
-  EXPECT_NE(gbm.find("display.outputs: \"monitors\" needs backend = \"glfw\""), std::string::npos) << gbm;
+  EXPECT_NE(gbm.find("key 'display.outputs': \"monitors\" needs backend = \"glfw\""), std::string::npos)
+      << gbm;
   const std::string mode = error("[display]\nmode = \"cave\"\n");
-  EXPECT_NE(mode.find("display.mode: unknown mode 'cave'"), std::string::npos) << mode;
+  EXPECT_NE(mode.find("key 'display.mode': unknown mode 'cave'"), std::string::npos) << mode;
   const std::string good = error(
       "[display]\nmode = \"screen\"\nnominal_eye = [0, 0, 1.7]\n[display.screen]\nlower_left = [-1, 1, 1]\n"
       "lower_right = [1, 1, 1]\nupper_left = [-1, 1, 2.125]\nupper_right = [1, 1, 2.125]\n");

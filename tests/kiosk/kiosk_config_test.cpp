@@ -114,11 +114,11 @@ TEST_F(KioskConfigTest, MinimalConfigUsesDefaults) {
 
 TEST_F(KioskConfigTest, ErrorsNameFileLineAndKey) {
   auto msg = error_of(std::string(kMinimal) + "[display]\nwidth = \"wide\"\n");
-  EXPECT_NE(msg.find("kiosk.toml:6: display.width: expected an integer"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("kiosk.toml:6: key 'display.width': expected an integer"), std::string::npos) << msg;
   msg = error_of(std::string(kMinimal) + "[display]\nbackend = \"vulkan\"\n");
   EXPECT_NE(msg.find("display.backend"), std::string::npos) << msg;
   msg = error_of(std::string(kMinimal) + "[walker]\neye_hieght = 1.7\n");
-  EXPECT_NE(msg.find(":6: walker.eye_hieght: unknown key"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(":6: unknown key 'walker.eye_hieght'"), std::string::npos) << msg;
   msg = error_of(std::string(kMinimal) + "[devices.treadmill]\nbackend = \"mock\"\n");
   EXPECT_NE(msg.find("devices.treadmill"), std::string::npos) << msg;
   EXPECT_NE(msg.find("trace"), std::string::npos) << msg;
@@ -131,7 +131,7 @@ TEST_F(KioskConfigTest, ErrorsNameFileLineAndKey) {
   msg = error_of("bundle = \n");
   EXPECT_NE(msg.find("kiosk.toml:1"), std::string::npos) << msg;
   msg = error_of(std::string(kMinimal) + "[simulation]\nframe_rate = 0\n");
-  EXPECT_NE(msg.find("simulation.frame_rate: must be between"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("simulation.frame_rate': must be between"), std::string::npos) << msg;
 }
 
 TEST_F(KioskConfigTest, MissingFileIsNamed) {

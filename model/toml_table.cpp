@@ -1,11 +1,11 @@
-#include "compiler/scene/toml_access.hpp"
+#include "model/toml_table.hpp"
 
 #include <fstream>
 #include <sstream>
 
 #include "model/error.hpp"
 
-namespace walk::compiler {
+namespace walk {
 
 std::string TomlTable::where(const std::string& key) const {
   const toml::node* n = node(key);
@@ -16,7 +16,8 @@ std::string TomlTable::where(const std::string& key) const {
 void TomlTable::fail(const std::string& key, const std::string& what) const {
   const toml::node* n = node(key);
   const auto line = n ? n->source().begin.line : table_.source().begin.line;
-  throw Error(located(file_, line, "key '" + key_path(key) + "': " + what));
+  const std::string path = key_path(key);
+  throw Error(located(file_, line, path.empty() ? what : "key '" + path + "': " + what));
 }
 
 std::optional<std::string> TomlTable::string(const std::string& key) const {
@@ -45,6 +46,31 @@ std::optional<bool> TomlTable::boolean(const std::string& key) const {
   if (!n) return std::nullopt;
   if (!n->is_boolean()) fail(key, "expected true or false");
   return n->value<bool>();
+}
+
+namespace {
+// 0.25, 1e6, 480: the shortest form that reads back as the same number.
+std::string short_number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+}  // namespace
+
+double TomlTable::number(const std::string& key, double fallback, double lo, double hi) const {
+  const double v = number(key).value_or(fallback);
+  if (!(v >= lo && v <= hi)) fail(key, "must be between " + short_number(lo) + " and " + short_number(hi));
+  return v;
+}
+
+int TomlTable::integer(const std::string& key, int fallback, int lo, int hi) const {
+  const long long v = integer(key).value_or(fallback);
+  if (v < lo || v > hi) fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+  return static_cast<int>(v);
+}
+
+bool TomlTable::boolean(const std::string& key, bool fallback) const {
+  return boolean(key).value_or(fallback);
 }
 
 std::optional<std::vector<double>> TomlTable::numbers(const std::string& key, std::size_t count) const {
@@ -125,4 +151,4 @@ toml::table parse_toml_file(const std::string& path, std::string* text) {
   }
 }
 
-}  // namespace walk::compiler
+}  // namespace walk
