@@ -1,6 +1,7 @@
 #pragma once
-// The display compiler: scene config -> import -> rules -> openings -> luminaires -> mesh -> light -> cells
-// -> bundle. Each stage records what it did; a stage the scene does not call for is not run.
+// The display compiler: scene config -> the stages of compiler/stages/stages.hpp in order (import, rules,
+// cleanup, recentre, openings, seal, luminaires, mesh, light, compact, meta, cells, lod) -> bundle. Each
+// stage records what it did; a stage the scene does not call for is not run.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,10 @@ struct CompileResult {
   model::BundleContents bundle;
   std::vector<StageReport> stages;
 };
+
+// The compiler's own identity, an input of every hash: version, revision, and for a development build its
+// executable.
+[[nodiscard]] std::uint64_t compiler_identity();
 
 // Hash of everything the output depends on: config bytes, model file bytes, compiler revision.
 [[nodiscard]] std::uint64_t scene_hash(const SceneConfig& config);

@@ -46,7 +46,7 @@ build hid_report_fuzzer "$src"/fuzz/hid_report_fuzzer.cpp "$src"/devices/hid/rep
 # that the shipped build survives (SceneConfigTest.NonAsciiNamesAndCommentsLoadAsWritten); everything else
 # stays checked.
 build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_toml_fuzzer.cpp "$src"/compiler/scene/{scene_config,units}.cpp "$src"/model/toml_table.cpp \
-  "$src"/compiler/visibility/visibility_config.cpp \
+  "$src"/compiler/partition/visibility_config.cpp \
   "${common[@]}" -ltomlplusplus -lspdlog -lfmt
 build modbus_registers_fuzzer "$src"/fuzz/modbus_registers_fuzzer.cpp "$src"/devices/modbus/register_levels.cpp -lfmt
 # The kiosk config goes through toml++ too: the same two flags, for the same reasons.

@@ -4,7 +4,7 @@
 #include <polyclipping/clipper.hpp>
 #include <vector>
 
-#include "compiler/visibility/vis_geometry.hpp"
+#include "compiler/geometry/vis_geometry.hpp"
 
 namespace walk::compiler {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "compiler/visibility/vis_geometry.hpp"
-#include "compiler/visibility/visibility_config.hpp"
+#include "compiler/geometry/vis_geometry.hpp"
+#include "compiler/partition/visibility_config.hpp"
 #include "model/bundle_format.hpp"
 
 namespace walk::compiler {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/import/plan_builder.hpp"
-#include "compiler/visibility/visibility_config.hpp"
+#include "compiler/partition/visibility_config.hpp"
+#include "compiler/scene/plan_options.hpp"
 #include "model/model.hpp"
 
 namespace walk::compiler {

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "compiler/partition/portals.hpp"
+#include "compiler/partition/visibility_config.hpp"
 #include "compiler/visibility/hidden_proof.hpp"
 #include "compiler/visibility/inside_flood.hpp"
-#include "compiler/visibility/visibility_config.hpp"
 #include "model/bundle.hpp"
 
 namespace walk::compiler {

@@ -14,8 +14,8 @@
 #include <span>
 #include <vector>
 
+#include "compiler/geometry/vis_geometry.hpp"
 #include "compiler/visibility/cover_index.hpp"
-#include "compiler/visibility/vis_geometry.hpp"
 
 namespace walk::compiler {
 

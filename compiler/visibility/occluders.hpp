@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
+#include "compiler/geometry/vis_geometry.hpp"
 #include "compiler/partition/partition.hpp"
-#include "compiler/visibility/vis_geometry.hpp"
 
 namespace walk::compiler {
 

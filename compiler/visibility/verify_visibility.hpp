@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "compiler/geometry/vis_geometry.hpp"
 #include "compiler/partition/portals.hpp"
 #include "compiler/raycast/ray_caster.hpp"
-#include "compiler/visibility/vis_geometry.hpp"
 
 namespace walk::compiler {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "compiler/visibility/vis_geometry.hpp"
-#include "compiler/visibility/visibility_config.hpp"
+#include "compiler/geometry/vis_geometry.hpp"
+#include "compiler/partition/visibility_config.hpp"
 
 namespace walk::compiler {
 

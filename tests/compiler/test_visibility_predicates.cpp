@@ -3,9 +3,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "compiler/geometry/vis_geometry.hpp"
 #include "compiler/partition/axial_cover.hpp"
 #include "compiler/partition/partition.hpp"
-#include "compiler/visibility/vis_geometry.hpp"
 
 namespace walk::compiler {
 namespace {

@@ -1,4 +1,4 @@
-#include "compiler/visibility/vis_geometry.hpp"
+#include "compiler/geometry/vis_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>

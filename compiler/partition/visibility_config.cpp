@@ -1,4 +1,4 @@
-#include "compiler/visibility/visibility_config.hpp"
+#include "compiler/partition/visibility_config.hpp"
 
 namespace walk::compiler {
 
