@@ -48,13 +48,16 @@ build hid_report_fuzzer "$src"/fuzz/hid_report_fuzzer.cpp "$src"/devices/hid/rep
 build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_toml_fuzzer.cpp "$src"/compiler/scene/{scene_config,units}.cpp "$src"/model/toml_table.cpp \
   "$src"/compiler/partition/visibility_config.cpp \
   "${common[@]}" -ltomlplusplus -lspdlog -lfmt
+# OBJ through the mesh reader: assimp (Debian's, uninstrumented) parses; our conversion of its scene is checked.
+build obj_fuzzer "$src"/fuzz/obj_fuzzer.cpp "$src"/compiler/import/{mesh_reader,texture_image,uv_fit}.cpp \
+  "$src"/model/srgb.cpp "${common[@]}" -lassimp -lpng -ljpeg -lspdlog -lfmt
 build modbus_registers_fuzzer "$src"/fuzz/modbus_registers_fuzzer.cpp "$src"/devices/modbus/register_levels.cpp -lfmt
 # The kiosk config goes through toml++ too: the same two flags, for the same reasons.
 build kiosk_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/kiosk_toml_fuzzer.cpp \
   "$src"/firmware-host/{kiosk_config,device_config}.cpp "$src"/devices/hid/report_layout.cpp "$src"/devices/devices.cpp \
   "$src"/model/{error,toml_table}.cpp -ltomlplusplus -lfmt
 status=0
-for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml; do
+for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml obj; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
