@@ -10,6 +10,7 @@
 #include "firmware-host/device_config.hpp"
 #include "model/error.hpp"
 #include "model/toml_table.hpp"
+#include "render/frame_timing.hpp"
 
 namespace walk::kiosk {
 namespace {
@@ -171,11 +172,9 @@ KioskConfig load_kiosk_config(const std::string& path) {
     c.display.refine = s->boolean("refine", c.display.refine);
     c.display.target_hz = s->number("target_hz", c.display.target_hz, 1.0, 480.0);
     c.display.frame_timing = s->string("frame_timing").value_or(c.display.frame_timing);
-    // render::parse_frame_timing reads these at start; checked here so the config reader needs no GL.
-    const auto& timing = c.display.frame_timing;
-    if (timing != "auto" && timing != "finish" && timing != "queries")
-      s->fail("frame_timing",
-              "unknown frame timing '" + c.display.frame_timing + "' (auto, finish or queries)");
+    if (!render::parse_frame_timing(c.display.frame_timing))
+      s->fail("frame_timing", "unknown frame timing '" + c.display.frame_timing + "' (" +
+                                  std::string(render::kFrameTimingNames) + ")");
     c.display.width = s->integer("width", c.display.width, 16, 16384);
     c.display.height = s->integer("height", c.display.height, 16, 16384);
     c.display.fullscreen = s->boolean("fullscreen", c.display.fullscreen);

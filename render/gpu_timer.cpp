@@ -6,13 +6,6 @@
 
 namespace walk::render {
 
-std::optional<FrameTiming> parse_frame_timing(const std::string& name) {
-  if (name == "auto") return FrameTiming::Auto;
-  if (name == "finish") return FrameTiming::Finish;
-  if (name == "queries") return FrameTiming::Queries;
-  return std::nullopt;
-}
-
 bool software_rasterizer() {
   const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   if (!renderer) return true;  // cannot tell: the safe choice times whole frames

@@ -10,15 +10,9 @@
 #include <optional>
 #include <string>
 
-namespace walk::render {
+#include "render/frame_timing.hpp"
 
-// How the renderer times its frames for the governor.
-enum class FrameTiming : std::uint8_t {
-  Auto,     // Queries on hardware drivers, Finish on software rasterizers
-  Finish,   // glFinish, then the CPU clock: the whole frame, at the cost of a drained pipeline
-  Queries,  // timer queries, read frames later; a frame counts max(CPU submission time, GPU time)
-};
-[[nodiscard]] std::optional<FrameTiming> parse_frame_timing(const std::string& name);
+namespace walk::render {
 
 // Whether the current context's driver rasterizes on the CPU (llvmpipe, softpipe, swrast). There the "GPU"
 // is the CPU's own cores: vertex work runs in the draw call and rasterization after it, so a timer query

@@ -19,6 +19,7 @@
 #include "model/bundle.hpp"
 #include "model/error.hpp"
 #include "render/backend/backend.hpp"
+#include "render/frame_timing.hpp"
 #include "render/renderer.hpp"
 #include "render/tonemap.hpp"
 #include "tools/commands.hpp"
@@ -436,7 +437,10 @@ void add_bench_render_command(CLI::App& bench, int& exit_code) {
       ->check(CLI::Range(1.0, 1000.0));
   cmd->add_option("--frame-timing", o->frame_timing,
                   "How the governor times frames: auto, finish (glFinish) or queries (GL timer queries)")
-      ->check(CLI::IsMember({"auto", "finish", "queries"}));
+      ->check([](const std::string& name) {
+        return render::parse_frame_timing(name) ? std::string()
+                                                : "expected " + std::string(render::kFrameTimingNames);
+      });
   cmd->callback([o, &exit_code] { exit_code = run(*o); });
 }
 

@@ -158,36 +158,23 @@ TEST_F(DaemonTest, WalkerWithoutDevicesStandsStill) {
 // converges and then nothing is drawn (an idle kiosk); a dimmer change draws again; walking draws every
 // frame.
 TEST_F(DaemonTest, StillKioskStopsDrawingOnceRefinedAndDimmersWakeIt) {
-  DisplayConfig display;
-  display.backend = "osmesa";
-  display.width = 160;
-  display.height = 90;
-  std::unique_ptr<FrameRenderer> renderer;
-  try {
-    renderer = make_gl_renderer(*bundle_, display);
-  } catch (const Error& e) {
-    GTEST_SKIP() << "no OSMesa here: " << e.what();
-  }
+  if (!osmesa_renderer(160, 90)) GTEST_SKIP() << osmesa_missing_;
   config_.simulation.seconds = 8.0;  // 240 frames
   config_.devices.treadmill = DeviceConfig{"mock", write("still.csv", "time,speed\n0,0\n")};
   std::atomic<bool> stop{false};
   // Which frames drew: how many refinement steps fit a frame depends on the machine's speed (the governor
   // times them), so the test asks when drawing happens, not how often.
-  struct Recording final : FrameRenderer {
-    explicit Recording(std::unique_ptr<FrameRenderer> r) : inner(std::move(r)) {}
-    const char* name() const override { return inner->name(); }
-    void set_dimmers(std::span<const float> l) override { inner->set_dimmers(l); }
+  struct Recording final : testing::ForwardingRenderer {
+    using ForwardingRenderer::ForwardingRenderer;
     bool draw(const render::View& v) override {
-      drew.push_back(inner->draw(v));
+      drew.push_back(ForwardingRenderer::draw(v));
       return drew.back();
     }
-    render::Image capture() const override { return inner->capture(); }
-    std::unique_ptr<FrameRenderer> inner;
     std::vector<bool> drew;
   };
   auto run_still = [&](const std::string& dimmer_trace) {
     config_.devices.dimmer_panel = DeviceConfig{"mock", write("dimmers.csv", dimmer_trace)};
-    Recording fresh(make_gl_renderer(*bundle_, display));
+    Recording fresh(make_gl_renderer(*bundle_, display_));
     Daemon still(config_, *bundle_, fresh, open_devices(config_.devices));
     const Summary s = still.run(stop);
     EXPECT_EQ(s.frames_drawn, std::size_t(std::count(fresh.drew.begin(), fresh.drew.end(), true)));
@@ -213,7 +200,7 @@ TEST_F(DaemonTest, StillKioskStopsDrawingOnceRefinedAndDimmersWakeIt) {
 
   config_.devices.treadmill = DeviceConfig{"mock", write("walk.csv", "time,speed\n0,1.0\n")};
   config_.simulation.seconds = 2.0;
-  auto walking_renderer = make_gl_renderer(*bundle_, display);
+  auto walking_renderer = make_gl_renderer(*bundle_, display_);
   Daemon walking(config_, *bundle_, *walking_renderer, open_devices(config_.devices));
   const Summary w = walking.run(stop);
   EXPECT_GT(w.distance, 1.0);

@@ -53,22 +53,14 @@ std::uint16_t sweep(int channel, double t) {
 }
 
 // Remembers the levels of the last frame, on top of the real renderer.
-class LevelRecorder final : public FrameRenderer {
+class LevelRecorder final : public testing::ForwardingRenderer {
  public:
-  explicit LevelRecorder(std::unique_ptr<FrameRenderer> inner) : inner_(std::move(inner)) {}
-  const char* name() const override { return inner_->name(); }
+  using ForwardingRenderer::ForwardingRenderer;
   void set_dimmers(std::span<const float> l) override {
     levels.assign(l.begin(), l.end());
-    inner_->set_dimmers(l);
+    ForwardingRenderer::set_dimmers(l);
   }
-  bool draw(const render::View& v) override { return inner_->draw(v); }
-  bool draw_views(std::span<const render::View> v) override { return inner_->draw_views(v); }
-  render::Image capture() const override { return inner_->capture(); }
-  void present(bool drew) override { inner_->present(drew); }
   std::vector<float> levels;
-
- private:
-  std::unique_ptr<FrameRenderer> inner_;
 };
 
 using SoakTest = testing::TwoRoomKioskTest;
@@ -76,16 +68,8 @@ using SoakTest = testing::TwoRoomKioskTest;
 TEST_F(SoakTest, DayOfFaultsAndDimmerSweepsKeepsMemoryFlatAndLightOnTime) {
   const double hours = simulated_hours();
   const double seconds = hours * 3600.0;
-  DisplayConfig display;
-  display.backend = "osmesa";
-  display.width = 64;
-  display.height = 36;
-  std::unique_ptr<FrameRenderer> gl;
-  try {
-    gl = make_gl_renderer(*bundle_, display);
-  } catch (const Error& e) {
-    GTEST_SKIP() << "no OSMesa here: " << e.what();
-  }
+  std::unique_ptr<FrameRenderer> gl = osmesa_renderer(64, 36);
+  if (!gl) GTEST_SKIP() << osmesa_missing_;
   LevelRecorder renderer(std::move(gl));
 
   // A treadmill that turns to a new heading every 20 s (the walker wanders, slides along walls and crosses
