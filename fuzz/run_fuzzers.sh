@@ -62,7 +62,7 @@ for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kios
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
   echo "run_fuzzers: ${kind}_fuzzer for ${seconds} s"
-  if ! (cd "$out" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  if ! (cd "$out" && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$src/fuzz/lsan.supp" UBSAN_OPTIONS=print_stacktrace=1 \
         ./${kind}_fuzzer -seed=1 -runs=$((seconds * 5000)) -max_total_time="$seconds" -timeout=60 -report_slow_units=60 -rss_limit_mb=2048 -max_len=65536 \
         $([ -f "$src/fuzz/$kind.dict" ] && echo "-dict=$src/fuzz/$kind.dict") -artifact_prefix="$out/artifacts-$kind/" -print_final_stats=1 "$corpus" > "$out/${kind}_fuzzer.log" 2>&1); then
     echo "run_fuzzers: ${kind}_fuzzer FAILED; the last lines of $out/${kind}_fuzzer.log:"
