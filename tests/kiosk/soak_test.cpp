@@ -182,9 +182,13 @@ TEST_F(SoakTest, DayOfFaultsAndDimmerSweepsKeepsMemoryFlatAndLightOnTime) {
   EXPECT_GT(checked_frames, std::uint64_t(0.7 * seconds * kFrameRate));
   EXPECT_EQ(s.frames_saved, std::uint64_t(std::ceil(seconds / 3600.0)));
   EXPECT_EQ(s.frames_not_saved, 0u);
-  EXPECT_GT(s.distance, 1000.0);                                  // it walked all day
-  EXPECT_GT(s.room_changes, Summary::kRoomSequenceKept);          // the cap was reached ...
-  EXPECT_EQ(s.room_sequence.size(), Summary::kRoomSequenceKept);  // ... and held
+  EXPECT_GT(s.distance, 1000.0);  // it walked all day
+  // The latest rooms are kept, never more than the cap; a day (the default) walks past it. A shorter
+  // WALK_SOAK_HOURS run may not reach it.
+  EXPECT_EQ(s.room_sequence.size(), std::min<std::uint64_t>(s.room_changes, Summary::kRoomSequenceKept));
+  if (hours >= 24.0) {
+    EXPECT_GT(s.room_changes, Summary::kRoomSequenceKept);
+  }
   // Flat memory: nothing grows with frames, faults, room changes, saves or latency samples.
   ASSERT_GT(warm_rss, 0.0);
   EXPECT_LE(max_rss_after_warm_up, warm_rss * (1.0 + kRssGrowthAllowed))
