@@ -1,5 +1,6 @@
 #include "compiler/import/mesh_reader.hpp"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -10,12 +11,10 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <glm/geometric.hpp>
 #include <map>
 #include <numbers>
 #include <optional>
-#include <sstream>
 
 #include "compiler/import/texture_image.hpp"
 #include "compiler/import/uv_fit.hpp"
@@ -65,28 +64,38 @@ model::Luminaire lamp_luminaire(const Lamp& lamp, double emission_scale) {
   return l;
 }
 
-// An OBJ's `mtllib` files that are not beside it: assimp goes on with a default material and says nothing
-// a user sees, so the model would compile grey without a word.
-void warn_missing_material_libraries(const std::string& path, MeshStats& stats) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  if (ext != ".obj") return;
-  std::ifstream in(path);
-  std::string line;
-  for (std::size_t number = 1; std::getline(in, line); ++number) {
-    if (line.rfind("mtllib", 0) != 0 || line.size() < 7 || !std::isspace(static_cast<unsigned char>(line[6])))
+// Every file assimp opens besides the model, and those it could not: an OBJ's `mtllib` that is not beside it
+// makes assimp go on with a default material and say nothing a user sees. Watching assimp's own opens finds
+// them without reading the model a second time.
+class OpenRecorder final : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(file, mode);
+    (stream ? opened : missing).emplace_back(file);
+    return stream;
+  }
+  std::vector<std::string> opened, missing;
+};
+
+// Warns about each material library the model names that assimp could not open. When the named one is
+// missing, assimp tries <model>.mtl beside the model; that guess is reported as where the materials came
+// from, or left out when it is missing too (the model never named it).
+void warn_missing_material_libraries(const std::string& path, const OpenRecorder& io, MeshStats& stats) {
+  const std::string guess = std::filesystem::path(path).replace_extension(".mtl").filename().string();
+  auto is_guess = [&](const std::string& f) { return std::filesystem::path(f).filename().string() == guess; };
+  const bool guess_opened = std::any_of(io.opened.begin(), io.opened.end(), is_guess);
+  const bool named_elsewhere =
+      std::any_of(io.missing.begin(), io.missing.end(), [&](const std::string& f) { return !is_guess(f); });
+  std::vector<std::string> reported;
+  for (const auto& file : io.missing) {
+    if ((is_guess(file) && named_elsewhere) ||
+        std::find(reported.begin(), reported.end(), file) != reported.end())
       continue;
-    std::istringstream names(line.substr(6));
-    for (std::string name; names >> name;) {
-      std::error_code ec;
-      const auto library = std::filesystem::path(path).parent_path() / name;
-      if (std::filesystem::is_regular_file(library, ec)) continue;
-      ++stats.material_libraries_missing;
-      spdlog::warn(
-          "{}:{}: the material library '{}' is not at {}; its materials get the default grey "
-          "(put the .mtl beside the model)",
-          path, number, name, library.string());
-    }
+    reported.push_back(file);
+    ++stats.material_libraries_missing;
+    spdlog::warn("{}: the file '{}' it names cannot be opened; {} (put it beside the model)", path, file,
+                 guess_opened ? "its materials come from " + guess + " instead"
+                              : std::string("its materials get the default grey"));
   }
 }
 
@@ -174,6 +183,8 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
   if (!(options.unit_scale > 0.0) || !std::isfinite(options.unit_scale))
     throw Error(located(path, 0, "unit scale is not a positive number", "set `units` or `scale` in [model]"));
   Assimp::Importer importer;
+  auto* io = new OpenRecorder;  // the importer owns it (SetIOHandler takes ownership)
+  importer.SetIOHandler(io);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure);
@@ -181,7 +192,7 @@ model::Model read_mesh(const std::string& path, const MeshOptions& options, Mesh
     throw Error(located(path, 0, std::string("assimp cannot read the file: ") + importer.GetErrorString(),
                         "check the format and that the file is complete (OBJ also needs its .mtl)"));
   MeshStats stats;
-  warn_missing_material_libraries(path, stats);
+  warn_missing_material_libraries(path, *io, stats);
   model::Model model;
   model.materials.push_back({"default", {0.5, 0.5, 0.5}});
   std::vector<std::uint32_t> material_index(scene->mNumMaterials, 0);

@@ -190,6 +190,18 @@ TEST_F(HardCompile, MissingMaterialLibraryIsWarnedAboutByName) {
   std::ofstream(dir_ / "red.obj") << "mtllib ok.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
   (void)read_mesh((dir_ / "red.obj").string(), {1.0, false, 1.0, {}}, &stats);
   EXPECT_EQ(stats.material_libraries_missing, 0u);
+  // The model names its own fallback (<model>.mtl) and it is missing: one warning, not two.
+  std::ofstream(dir_ / "self.obj") << "mtllib self.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  (void)read_mesh((dir_ / "self.obj").string(), {1.0, false, 1.0, {}}, &stats);
+  EXPECT_EQ(stats.material_libraries_missing, 1u);
+  // The named library is missing but assimp's fallback beside the model is there: still warned, and the
+  // fallback's material is the one used.
+  std::ofstream(dir_ / "blue.mtl") << "newmtl a\nKd 0 0 1\n";
+  std::ofstream(dir_ / "blue.obj") << "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+  const model::Model blue = read_mesh((dir_ / "blue.obj").string(), {1.0, false, 1.0, {}}, &stats);
+  EXPECT_EQ(stats.material_libraries_missing, 1u);
+  ASSERT_FALSE(blue.polygons.empty());
+  EXPECT_DOUBLE_EQ(blue.materials.at(blue.polygons.front().material).reflectance.b, 1.0);
 }
 
 TEST_F(HardCompile, ModelPathThatIsAFolderSaysSo) {
