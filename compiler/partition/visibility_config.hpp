@@ -22,6 +22,12 @@ enum class PvsMethod {
 [[nodiscard]] const char* pvs_method_name(PvsMethod m);
 [[nodiscard]] bool parse_pvs_method(const std::string& text, PvsMethod& out);
 
+// The proofs' budget of (viewer piece, target piece) pairs: E1M1 proves about 480,000 pairs a second on 2
+// cores (24.4 M in 50.5 s, proofs 16 per item), so 2e9 is about 70 minutes, the same order as the ray
+// budgets (kMaxSampledPvsRays, kMaxFirstRoundRays), past which proof_pairs is a typo, not a choice. E1M1
+// asks for 3.7e7.
+inline constexpr double kMaxProofPairs = 2e9;
+
 struct VisibilityConfig {
   // partition priority = w_occlusion*occlusion + w_balance*balance + w_split*split, each term in 0..1.
   double w_occlusion = 0.5;
@@ -52,6 +58,9 @@ struct VisibilityConfig {
   // Combined PVS: per polygon the flow lets through and no sample saw, (viewer piece, target piece) pairs
   // the hidden-polygon proof may try (hidden_proof.hpp) before the polygon is kept; 0: no proof.
   int proof_pairs = 256;
+  // Pairs the proofs may try over the whole model, checked before they start (compute_cells.cpp). Above it
+  // every item's allowance shrinks in proportion, with a warning. Not a scene key: tests lower it.
+  double proof_pair_budget = kMaxProofPairs;
   // Structure and detail (vis_items.hpp). A group whose box is shorter than this on its longest side
   // (metres; furniture, fixtures: a 2.64 m conference table is detail, a room's walls are not) is detail,
   // and so is a polygon smaller than detail_area (m^2; trim, mouldings, a curved mesh's facets).

@@ -40,9 +40,35 @@ std::vector<std::uint32_t> united(const std::vector<std::uint32_t>& a, const std
 void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32_t>>& sampled,
                   const RayCaster& caster, const VisibilityConfig& config) {
   const HiddenProver prover(r.polygons, caster, config.cull_back_faces);
-  const ProofOptions options{config.proof_pairs, ProofOptions{}.max_depth, config.cull_back_faces};
+  ProofOptions options{config.proof_pairs, ProofOptions{}.max_depth, config.cull_back_faces};
   ProofOptions cluster_options = options;
   cluster_options.max_pairs = std::min(config.proof_pairs, kClusterProofPairs);
+  // The whole proof's work before any of it: each item to try (in the PVS, seen by no sample) may take its
+  // allowance of pairs. Above the model's budget every allowance shrinks in proportion, with a warning: an
+  // item undecided when its pairs run out stays in the PVS, so the cap costs tightness, never a missed pixel,
+  // and refusing here would throw away the cells work already done.
+  double wanted = 0.0;
+  for (std::size_t c = 0; c < r.pvs.size(); ++c)
+    for (const auto p : r.pvs[c])
+      if (!std::binary_search(sampled[c].begin(), sampled[c].end(), p))
+        wanted += (r.polygons[p].detail ? cluster_options : options).max_pairs;
+  r.proof_pairs_wanted = wanted;
+  spdlog::debug("visibility: proofs may try up to {:.3g} pairs (budget {:.3g})", wanted,
+                config.proof_pair_budget);
+  if (wanted > config.proof_pair_budget) {
+    const double scale = config.proof_pair_budget / wanted;
+    options.max_pairs = std::max(1, static_cast<int>(options.max_pairs * scale));
+    cluster_options.max_pairs = std::max(1, static_cast<int>(cluster_options.max_pairs * scale));
+    r.proof_pairs_capped = options.max_pairs;
+    spdlog::warn(
+        "{}: [visibility] proof_pairs = {} would let the hidden-item proofs try up to {:.3g} pairs, above "
+        "the "
+        "budget of {:.3g}: each item gets {} pairs (clusters {}); items left undecided stay in the PVS. "
+        "Lower "
+        "proof_pairs to {} or less to choose yourself",
+        config.source, config.proof_pairs, wanted, config.proof_pair_budget, options.max_pairs,
+        cluster_options.max_pairs, options.max_pairs);
+  }
   std::vector<ProofStats> stats(r.pvs.size());
   Progress progress("cells: hidden proofs", r.pvs.size(), "cells");
   parallel_for(r.pvs.size(), config.threads, [&](std::size_t c) {
@@ -83,14 +109,15 @@ std::string VisibilityResult::summary() const {
       "items; "
       "flow {} steps, {} fallbacks to pairs ({} to might-see), {} occluded; {} sample rays; {} back faces "
       "dropped; "
-      "proofs {} tried, {} hidden, {} seen, {} undecided in {} pairs; "
+      "proofs {} tried, {} hidden, {} seen, {} undecided in {} pairs{}; "
       "partition {:.2f} s portals {:.2f} s pvs {:.2f} s (proofs {:.2f} s)",
       structure_items, detail_polygons, polygons.size() - structure_items, partition.cells.size(),
       std::count(inside.begin(), inside.end(), 0), partition.depth, partition.candidates,
       graph.portals.size(), leaks.size(), avg, worst, polygons.size(), flow_steps, flow_fallbacks,
       flow_cell_fallbacks, flow_occluded, sample_rays, back_faces_dropped, proofs.tried, proofs.hidden,
-      proofs.visible, proofs.undecided, proofs.pairs, seconds_partition, seconds_portals, seconds_pvs,
-      seconds_proofs);
+      proofs.visible, proofs.undecided, proofs.pairs,
+      proof_pairs_capped > 0 ? fmt::format(" (capped at {} an item)", proof_pairs_capped) : std::string(),
+      seconds_partition, seconds_portals, seconds_pvs, seconds_proofs);
 }
 
 std::vector<std::uint32_t> VisibilityResult::polygon_pvs(std::size_t cell) const {

@@ -34,6 +34,8 @@ struct VisibilityResult {
   std::uint64_t sample_rays = 0;
   std::uint64_t back_faces_dropped = 0;  // (cell, polygon) pairs left out by cull_back_faces
   ProofStats proofs;                     // hidden-polygon proofs of the combined PVS
+  double proof_pairs_wanted = 0.0;       // the proofs' allowances summed over the items they try
+  int proof_pairs_capped = 0;  // pairs an item got when that passed proof_pair_budget; 0: not capped
   double seconds_partition = 0.0, seconds_portals = 0.0, seconds_pvs = 0.0, seconds_proofs = 0.0;
   [[nodiscard]] std::string summary() const;  // one line for the stage record and logs
   // The bundle polygons of a cell's PVS, sorted.

@@ -251,6 +251,41 @@ TEST(Pvs, AWallInsideACellHidesWhatLiesBehindIt) {
   }
 }
 
+TEST(Pvs, ProofsOverTheirBudgetShrinkEachAllowanceAndStayConservative) {
+  // The scene above, its proofs alone hiding the box; then a budget of pairs far below what they ask for.
+  MiniBuilding m = row_of_rooms({true});
+  const model::Vec3 a(5.0, 0.2, 0.0), b(5.4, 3.8, 0.0), c(5.4, 3.8, 2.95), d(5.0, 0.2, 2.95);
+  m.quad(a, d, c, b);
+  m.quad(a, b, c, d);
+  m.room({6.9, 1.9, 0.2}, {7.1, 2.1, 0.4});
+  VisibilityConfig config = test_config(PvsMethod::Combined, true);
+  config.occluders = false;
+  config.proof_pairs = 256;
+  config.detail_area = 0.0;
+  const VisibilityResult full = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+  ASSERT_GT(full.proofs.hidden, 0u);
+  EXPECT_EQ(full.proof_pairs_capped, 0);
+  config.proof_pair_budget = 0.01 * full.proof_pairs_wanted;
+  const VisibilityResult capped = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
+  EXPECT_EQ(capped.proof_pairs_wanted, full.proof_pairs_wanted);
+  EXPECT_EQ(capped.proof_pairs_capped, std::max(1, int(256 * 0.01)));
+  EXPECT_LE(double(capped.proofs.pairs), config.proof_pair_budget + double(capped.proofs.tried))
+      << "each item stops at its allowance (one pair over, the one that finds it spent)";
+  EXPECT_LT(capped.proofs.pairs, full.proofs.pairs);
+  EXPECT_NE(capped.summary().find("capped at"), std::string::npos) << capped.summary();
+  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(true));
+  std::uint64_t missed = 0;
+  for (std::uint32_t cell = 0; cell < capped.partition.cells.size(); ++cell) {
+    const Box& box = capped.partition.cells[cell];
+    missed += judge.missed(judge.views(box, cell, portal_viewpoints(capped.graph, box, cell)),
+                           capped.polygon_pvs(cell));
+    const auto kept = capped.polygon_pvs(cell);
+    for (const auto p : full.polygon_pvs(cell))
+      EXPECT_TRUE(has(kept, p)) << "cell " << cell << " polygon " << p;
+  }
+  EXPECT_EQ(missed, 0u);
+}
+
 TEST(Pvs, PortalsMeetingAtACellCorner) {
   // Four rooms around (4,4): each dividing wall has its opening against the middle, so the four
   // openings meet along the vertical line x = y = 4 and the diagonal rooms see each other across it.
