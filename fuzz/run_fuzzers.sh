@@ -7,7 +7,7 @@
 # Exit 0: no crash, no hang (-timeout), no rejection without file and line; 77: no
 # clang with libFuzzer here (the caller skips). Usage: run_fuzzers.sh SOURCE_DIR OUT [SECONDS]
 set -euo pipefail
-src=$1
+src=$(cd "$1" && pwd)  # absolute: the fuzzers run from $out
 out=$2
 seconds=${3:-30}
 cxx=${WALK_FUZZ_CXX:-clang++}
@@ -50,7 +50,7 @@ build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_tom
   "${common[@]}" -ltomlplusplus -lspdlog -lfmt
 # OBJ through the mesh reader: assimp (Debian's, uninstrumented) parses; our conversion of its scene is checked.
 build obj_fuzzer "$src"/fuzz/obj_fuzzer.cpp "$src"/compiler/import/{mesh_reader,texture_image,uv_fit}.cpp \
-  "$src"/model/srgb.cpp "${common[@]}" -lassimp -lpng -ljpeg -lspdlog -lfmt
+  "$src"/compiler/cleanup/stray_geometry.cpp "$src"/model/srgb.cpp "${common[@]}" -lassimp -lpng -ljpeg -lspdlog -lfmt
 build modbus_registers_fuzzer "$src"/fuzz/modbus_registers_fuzzer.cpp "$src"/devices/modbus/register_levels.cpp -lfmt
 # The kiosk config goes through toml++ too: the same two flags, for the same reasons.
 build kiosk_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/kiosk_toml_fuzzer.cpp \
