@@ -148,6 +148,7 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kCoarseRanges, c.coarse_ranges),
       pending(section::kCells, c.cells),
       pending(section::kNodes, c.nodes),
+      pending(section::kPortals, c.portals),
       pending(section::kPvs, c.pvs),
       pending(section::kClusters, c.clusters),
       pending(section::kLeakPath, c.leak_path),
@@ -298,6 +299,7 @@ void Bundle::validate() {
   get(section::kCoarseRanges, coarse_ranges_, false);
   get(section::kCells, cells_, true);
   get(section::kNodes, nodes_, true);
+  get(section::kPortals, portals_, false);
   get(section::kPvs, pvs_, true);
   get(section::kClusters, clusters_, false);
   get(section::kLeakPath, leak_path_, false);
@@ -381,6 +383,19 @@ void Bundle::validate() {
     const auto& c = cells_[i];
     if (c.pvs_first > pvs_.size() || c.pvs_count > pvs_.size() - c.pvs_first)
       fail("CELL " + std::to_string(i) + " PVS range runs past PVSL");
+  }
+  for (std::size_t i = 0; i < portals_.size(); ++i) {
+    const auto& p = portals_[i];
+    const std::string name = "PORT " + std::to_string(i);
+    if (p.back >= cells_.size() || p.front >= cells_.size() || p.back == p.front)
+      fail(name + " joins cells out of range or a cell to itself");
+    const std::uint32_t axis = p.flags & kPortalAxisMask;
+    if (axis > 2 || (p.flags & ~(kPortalAxisMask | kPortalForward | kPortalBackward)) != 0)
+      fail(name + " has an unknown axis or flags");
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(p.bounds_min[a]) || !std::isfinite(p.bounds_max[a]) ||
+          p.bounds_min[a] > p.bounds_max[a])
+        fail(name + " has a non-finite or inverted box");
   }
   for (const auto& p : leak_path_)
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))

@@ -31,7 +31,8 @@ struct BundleContents {
   std::vector<CoarseRangeRecord> coarse_ranges;             // empty, or one per polygon
   std::vector<CellRecord> cells;
   std::vector<NodeRecord> nodes;
-  std::vector<std::uint32_t> pvs;  // cluster ids (polygon ids when `clusters` is empty)
+  std::vector<PortalRecord> portals;  // empty, or the cells' portals
+  std::vector<std::uint32_t> pvs;     // cluster ids (polygon ids when `clusters` is empty)
   std::vector<ClusterRecord> clusters;
   std::vector<std::uint32_t> cluster_polygons;
   std::vector<std::uint32_t> lod_indices;       // empty, or LODX
@@ -84,6 +85,8 @@ class Bundle {
   [[nodiscard]] std::span<const CoarseRangeRecord> coarse_ranges() const { return coarse_ranges_; }
   [[nodiscard]] std::span<const CellRecord> cells() const { return cells_; }
   [[nodiscard]] std::span<const NodeRecord> nodes() const { return nodes_; }
+  // Empty when the compiler found none (one cell) or wrote a bundle before portals were stored.
+  [[nodiscard]] std::span<const PortalRecord> portals() const { return portals_; }
   [[nodiscard]] std::span<const std::uint32_t> pvs() const { return pvs_; }  // cluster ids
   [[nodiscard]] std::span<const ClusterRecord> clusters() const { return clusters_; }
   [[nodiscard]] std::span<const std::array<float, 3>> leak_path() const { return leak_path_; }
@@ -128,6 +131,7 @@ class Bundle {
   std::span<const CoarseRangeRecord> coarse_ranges_;
   std::span<const CellRecord> cells_;
   std::span<const NodeRecord> nodes_;
+  std::span<const PortalRecord> portals_;
   std::span<const std::uint32_t> pvs_;
   std::span<const ClusterRecord> clusters_;
   std::span<const std::array<float, 3>> leak_path_;

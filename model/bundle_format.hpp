@@ -120,6 +120,25 @@ struct CellRecord {
 };
 static_assert(sizeof(CellRecord) == 40);
 
+// The cells' portals, optional: where sight passes from one cell into another (the parts of a cell's boundary
+// no opaque polygon covers). The renderer narrows its view through them each frame (Luebke & Georges 1995),
+// so a frame draws what the eye's chains of portals show, not its cell's whole PVS. Each record is the box of
+// one portal's outline, flat on its axis and rounded outward, joining `back` (on the -axis side) to `front`.
+// Flags: the axis (0-2) in the low two bits, and which ways sight lines pass (one-way portals arise where
+// back faces are culled; see compiler/partition/portals.hpp).
+inline constexpr std::uint32_t kPortalAxisMask = 3;
+inline constexpr std::uint32_t kPortalForward = 4;   // from `back` into `front`
+inline constexpr std::uint32_t kPortalBackward = 8;  // from `front` into `back`
+struct PortalRecord {
+  float bounds_min[3];
+  float bounds_max[3];
+  std::uint32_t back;
+  std::uint32_t front;
+  std::uint32_t flags;
+  std::uint32_t reserved = 0;
+};
+static_assert(sizeof(PortalRecord) == 40);
+
 // A cluster: polygons of one object lying close together (or one shell polygon), the unit a PVS lists.
 // Its polygons are a range of CLPO. A bundle without CLUS has one cluster per polygon, in polygon order.
 struct ClusterRecord {
@@ -205,6 +224,7 @@ inline constexpr std::uint32_t kCoarseRanges = tag("CRNG");
 inline constexpr std::uint32_t kCells = tag("CELL");
 inline constexpr std::uint32_t kNodes = tag("NODE");
 inline constexpr std::uint32_t kPvs = tag("PVSL");       // cluster indices, per cell ranges
+inline constexpr std::uint32_t kPortals = tag("PORT");   // optional, see PortalRecord
 inline constexpr std::uint32_t kLeakPath = tag("LEAK");  // optional, float xyz: seed to the largest leak
 inline constexpr std::uint32_t kClusters = tag("CLUS");  // optional, see ClusterRecord
 inline constexpr std::uint32_t kClusterPolygons = tag("CLPO");  // u32 polygon indices of the clusters

@@ -31,6 +31,11 @@ int inspect(const std::string& path, bool list) {
   std::printf("luminaires        %zu\ncircuits          %zu\n", b->luminaires().size(), b->circuits().size());
   std::printf("cells             %zu (tree nodes %zu, PVS entries %zu)\n", b->cells().size(),
               b->nodes().size(), b->pvs().size());
+  std::size_t one_way = 0;
+  for (const auto& p : b->portals())
+    one_way += (p.flags & (model::kPortalForward | model::kPortalBackward)) !=
+               (model::kPortalForward | model::kPortalBackward);
+  std::printf("portals           %zu (%zu one-way)\n", b->portals().size(), one_way);
   std::printf("clusters          %zu%s\n",
               b->clusters().empty() ? b->polygons().size() : b->clusters().size(),
               b->clusters().empty() ? " (one per polygon)" : "");

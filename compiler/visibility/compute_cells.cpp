@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iterator>
+#include <limits>
 
 #include "common/parallel_for.hpp"
 #include "common/progress.hpp"
@@ -18,6 +20,16 @@
 
 namespace walk::compiler {
 namespace {
+
+// The float nearest below (above) `x`: a box stored in float must still hold what it held in double.
+float round_down(double x) {
+  const auto f = static_cast<float>(x);
+  return double(f) <= x ? f : std::nextafter(f, -std::numeric_limits<float>::infinity());
+}
+float round_up(double x) {
+  const auto f = static_cast<float>(x);
+  return double(f) >= x ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
 
 // Pairs the proof may try per detail cluster (at most proof_pairs): a cluster proof is six box faces, and
 // most that a few pairs leave undecided stay so. On the generated S building 32 pairs take the proofs
@@ -287,6 +299,25 @@ CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfi
     rec.flags = r.inside[c] ? 0u : model::kCellOutside;
     out.pvs.insert(out.pvs.end(), r.pvs[c].begin(), r.pvs[c].end());
     out.cells.push_back(rec);
+  }
+  // Portals as boxes rounded outward to float, so the renderer's narrowing through them stays conservative.
+  out.portals.clear();
+  for (const Portal& portal : r.graph.portals) {
+    model::PortalRecord rec{};
+    rec.back = portal.back;
+    rec.front = portal.front;
+    rec.flags = std::uint32_t(portal.axis) | (portal.forward ? model::kPortalForward : 0u) |
+                (portal.backward ? model::kPortalBackward : 0u);
+    for (int a = 0; a < 3; ++a) {
+      double lo = std::numeric_limits<double>::max(), hi = -lo;
+      for (const model::Vec3& p : portal.outline.front()) {
+        lo = std::min(lo, p[a]);
+        hi = std::max(hi, p[a]);
+      }
+      rec.bounds_min[a] = round_down(lo);
+      rec.bounds_max[a] = round_up(hi);
+    }
+    if (portal.forward || portal.backward) out.portals.push_back(rec);
   }
   // The largest few openings are named, with the way in from a seed; the count is in the stage detail.
   auto world = [&](const model::Vec3& p) {

@@ -3,6 +3,7 @@
 // The full-size figures come from `walk verify visibility` (docs/VISIBILITY.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <vector>
@@ -43,6 +44,24 @@ TEST_P(VisibilityShared, ConservativePvsMissesNoPixel) {
     const auto& b = r.bundle;
     ASSERT_FALSE(b.cells.empty());
     ASSERT_EQ(b.nodes.empty(), b.cells.size() == 1);
+    // The portals the renderer walks: each on the face its two cells share, open at least one way.
+    if (b.cells.size() > 1) {
+      EXPECT_FALSE(b.portals.empty());
+    }
+    for (const auto& p : b.portals) {
+      const int axis = int(p.flags & model::kPortalAxisMask);
+      ASSERT_LT(axis, 3);
+      EXPECT_NE(p.flags & (model::kPortalForward | model::kPortalBackward), 0u);
+      EXPECT_NEAR(p.bounds_min[axis], b.cells[p.back].bounds_max[axis], 1e-3);
+      EXPECT_NEAR(p.bounds_max[axis], b.cells[p.front].bounds_min[axis], 1e-3);
+      for (int k = 0; k < 3; ++k) {
+        if (k == axis) continue;
+        EXPECT_GE(p.bounds_min[k],
+                  std::max(b.cells[p.back].bounds_min[k], b.cells[p.front].bounds_min[k]) - 1e-3);
+        EXPECT_LE(p.bounds_max[k],
+                  std::min(b.cells[p.back].bounds_max[k], b.cells[p.front].bounds_max[k]) + 1e-3);
+      }
+    }
 
     VerifyOptions o;
     o.viewpoints = 1;

@@ -225,6 +225,32 @@ TEST_F(BundleTest, ClustersExpandToTheirPolygonsAndAreValidated) {
   EXPECT_NE(open_error().find("LEAK"), std::string::npos);
 }
 
+TEST_F(BundleTest, PortalsAreReadAndValidated) {
+  BundleContents c = small_bundle();
+  c.cells.push_back(c.cells[0]);  // two cells, split at x = 0.5
+  c.nodes = {{{1, 0, 0, -0.5}, -2, -1}};
+  c.portals = {{{0.5f, 0.0f, 0.0f}, {0.5f, 1.0f, 1.0f}, 0, 1, 0 | kPortalForward | kPortalBackward, 0}};
+  write_bundle(path_, c);
+  {
+    const auto b = Bundle::open(path_);
+    ASSERT_EQ(b->portals().size(), 1u);
+    EXPECT_EQ(b->portals()[0].front, 1u);
+  }
+  auto broken = [&](auto&& change, const char* what) {
+    BundleContents d = c;
+    change(d.portals[0]);
+    write_bundle(path_, d);
+    const std::string error = open_error();
+    EXPECT_NE(error.find("PORT 0"), std::string::npos) << what << ": " << error;
+  };
+  broken([](PortalRecord& p) { p.front = 2; }, "a cell out of range");
+  broken([](PortalRecord& p) { p.front = 0; }, "a cell joined to itself");
+  broken([](PortalRecord& p) { p.flags = 3; }, "axis 3");
+  broken([](PortalRecord& p) { p.flags |= 16; }, "an unknown flag");
+  broken([](PortalRecord& p) { p.bounds_max[1] = std::nanf(""); }, "a NaN corner");
+  broken([](PortalRecord& p) { p.bounds_min[2] = 2.0f; }, "an inverted box");
+}
+
 TEST_F(BundleTest, LevelsOfDetailAreReadAndValidated) {
   BundleContents c = small_bundle();
   c.clusters.push_back({{0, 0, 0}, {1, 1, 0}, 0, 1});
