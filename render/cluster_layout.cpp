@@ -231,8 +231,8 @@ int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_
 }
 
 DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
-                           std::span<const std::uint32_t> units, const Frustum* frustum,
-                           const LodChoice* lod) {
+                           std::span<const std::uint32_t> units, const Frustum* frustum, const LodChoice* lod,
+                           const PortalView* portals) {
   DrawList list;
   std::uint64_t opaque_end = 0, glass_end = 0;
   for (const std::uint32_t u : units) {
@@ -240,6 +240,10 @@ DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
     if (frustum && !frustum->touches(layout.boxes[u])) continue;
     const int level = lod ? lod_level(layout, form, u, *lod) : 0;
     const IndexRange opaque = level == 0 ? form.opaque[u] : form.lod[u][std::size_t(level - 1)];
+    if (portals && !portals->shows(u)) {
+      list.triangles_behind_portals += (opaque.count + form.glass[u].count) / 3;
+      continue;
+    }
     list.polygons += layout.drawn[u];
     list.triangles += (opaque.count + form.glass[u].count) / 3;
     append(list.opaque, opaque, opaque_end);

@@ -13,6 +13,7 @@
 #include "model/bundle.hpp"
 #include "render/draw_list.hpp"
 #include "render/frustum.hpp"
+#include "render/portal_view.hpp"
 
 namespace walk::render {
 
@@ -82,12 +83,12 @@ struct ClusterLayout {
 // Every unit, in order.
 [[nodiscard]] std::vector<std::uint32_t> all_units(const ClusterLayout& layout);
 
-// The draw list of `units` (sorted) in `form`, less the units whose box lies outside `frustum` when one is
-// given; ranges that meet are merged.
+// The draw list of `units` (sorted) in `form`, less the units whose box lies outside `frustum` and those
+// `portals` does not show, when given; ranges that meet are merged.
 // With `lod` (and a form that has levels), each unit's opaque range is its level's.
 [[nodiscard]] DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
                                          std::span<const std::uint32_t> units, const Frustum* frustum,
-                                         const LodChoice* lod = nullptr);
+                                         const LodChoice* lod = nullptr, const PortalView* portals = nullptr);
 // The level `lod` picks for unit `u` of `form` (0: its own range; l + 1: LOD level l).
 [[nodiscard]] int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u,
                             const LodChoice& lod);

@@ -21,6 +21,7 @@ struct DrawList {
   DrawBatch glass;
   std::uint32_t polygons = 0;
   std::uint32_t triangles = 0;
+  std::uint32_t triangles_behind_portals = 0;  // in the frustum, but shown by no portal of the eye's way
 };
 
 // Whether a polygon of this role is drawn: openings are holes and ignored faces are not part of the scene.

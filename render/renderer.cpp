@@ -25,6 +25,8 @@
 #include "render/gl_check.hpp"
 #include "render/jitter.hpp"
 #include "render/light_mixer.hpp"
+#include "render/portal_policy.hpp"
+#include "render/portal_view.hpp"
 #include "render/shader.hpp"
 #include "render/subdivision.hpp"
 #include "render/tonemap.hpp"
@@ -80,6 +82,16 @@ struct Renderer::Impl {
   ClusterLayout layout;
   std::vector<std::optional<std::vector<std::uint32_t>>> cell_units;  // made on first visit
   std::vector<std::uint32_t> every_unit;
+  std::vector<std::uint32_t> near_units;  // this frame's, when sight starts in more than the eye's cell
+  // The view the near cells and the portal walk were made for (frame_list() reuses them for the same one).
+  std::uint32_t seen_cell = FrameStats::kNoCell;
+  glm::mat4 seen_matrix{0.0f};
+  bool seen_portals = false;
+  bool near_all = false;  // sight starts in a cell off the walk: everything is drawn
+  bool walked = false;    // the portals were walked for it
+  PortalPolicy portal_policy{bundle.cells().size()};
+  bool adaptive_portals = true;
+  std::uint32_t cells_seen = 0;  // reached by that walk
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
   // Coarse light: PLGT per circuit kept here, mixed on the CPU when the levels change (polygons x circuits,
@@ -95,6 +107,8 @@ struct Renderer::Impl {
   PresentRegion present_region;
   bool pvs_culling = true;
   bool frustum_culling = true;
+  bool portal_culling = true;
+  std::optional<PortalView> portal_view;  // when the bundle has portals
   bool map_overlay = false;
   float map_fraction = 0.35f;
   GLuint marker_vao = 0, marker_vbo = 0;
@@ -149,6 +163,18 @@ struct Renderer::Impl {
     }
     return *slot;
   }
+  // The units of every cell in `cells`; every unit when one is off the walk (an eye there draws all).
+  const std::vector<std::uint32_t>& union_of_pvs(std::span<const std::uint32_t> cells) {
+    near_units.clear();
+    for (const std::uint32_t c : cells) {
+      if (bundle.cells()[c].flags & model::kCellOutside) return every_unit;
+      const auto& u = units_for(c);
+      near_units.insert(near_units.end(), u.begin(), u.end());
+    }
+    std::sort(near_units.begin(), near_units.end());
+    near_units.erase(std::unique(near_units.begin(), near_units.end()), near_units.end());
+    return near_units;
+  }
   // Per frame: the cell's units, less those outside the frustum when one is given.
   DrawList list_for(std::uint32_t cell, bool coarse, const Frustum* frustum, const LodChoice* lod = nullptr) {
     return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, units_for(cell), frustum, lod);
@@ -176,8 +202,43 @@ struct Renderer::Impl {
     const Frustum frustum(view_projection_matrix);
     const LodChoice lod{glm::vec3(view.eye), float(double(full_height) / vertical_field_of_view(view)),
                         coarse ? lod_pixels : 0.0f};
-    return list_for(cell, coarse, frustum_culling ? &frustum : nullptr,
-                    lod.max_pixels > 0.0f ? &lod : nullptr);
+    const std::vector<std::uint32_t>* units = &units_for(cell);
+    const PortalView* portals = nullptr;
+    if (cell < bundle.cells().size()) {
+      // The governor asks for each level's list of the same view: the walk is made once a view.
+      const bool same_view = seen_cell == cell && seen_matrix == view_projection_matrix &&
+                             seen_portals == (portal_culling && portal_view.has_value());
+      if (!same_view) {
+        const glm::vec3 eye(view.eye);
+        near_units.clear();
+        const auto starts =
+            near_cells(bundle.nodes(), bundle.cells().size(), cell, eye, view_projection_matrix);
+        near_all = false;
+        if (starts.size() > 1) near_all = &union_of_pvs(starts) == &every_unit;
+        cells_seen = 0;
+        walked =
+            portal_culling && portal_view && !near_all && (!adaptive_portals || portal_policy.walk(cell));
+        if (walked) {
+          portal_view->look(cell, eye, view_projection_matrix);
+          cells_seen = portal_view->sees_everything() ? 0u : std::uint32_t(portal_view->cells_reached());
+        }
+        seen_cell = cell;
+        seen_matrix = view_projection_matrix;
+        seen_portals = portal_culling && portal_view.has_value();
+      }
+      if (near_all)
+        units = &every_unit;
+      else if (!near_units.empty())
+        units = &near_units;
+      if (walked) portals = &*portal_view;
+    } else {
+      cells_seen = 0;
+      walked = false;
+      seen_cell = FrameStats::kNoCell;
+    }
+    return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, *units,
+                             frustum_culling ? &frustum : nullptr, lod.max_pixels > 0.0f ? &lod : nullptr,
+                             portals);
   }
   // What each moving level would draw from `view`: the triangles of its draw list, for the governor.
   std::array<double, kMovingLevels> level_triangles(const View& view, int width, int height) {
@@ -301,6 +362,8 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
   r.layout = lay_out_clusters(layout_input(bundle));
   r.every_unit = all_units(r.layout);
   r.cell_units.resize(bundle.cells().size());
+  if (!bundle.portals().empty())
+    r.portal_view.emplace(bundle.portals(), bundle.nodes(), bundle.cells().size(), r.layout.boxes);
   const auto& indices = r.layout.fine.indices;
 
   // Static geometry: the VERT records are uploaded as they are (stride 40) and never touched again. A second
@@ -404,6 +467,16 @@ void Renderer::set_map_overlay(bool enabled, float fraction) {
   impl_->map_overlay = enabled;
   impl_->map_fraction = fraction;
 }
+void Renderer::set_portal_culling(bool enabled) {
+  if (impl_->portal_culling != enabled) impl_->restart = true;
+  impl_->portal_culling = enabled;
+}
+
+void Renderer::set_adaptive_portal_culling(bool enabled) {
+  impl_->adaptive_portals = enabled;
+  impl_->seen_cell = FrameStats::kNoCell;  // decide afresh for the next view
+}
+
 void Renderer::set_frustum_culling(bool enabled) {
   if (impl_->frustum_culling != enabled) impl_->restart = true;
   impl_->frustum_culling = enabled;
@@ -530,6 +603,10 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   // triangles.
   const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.layout.coarse.empty();
   r.list = r.frame_list(list_cell, view, view_projection_matrix, full_height, coarse, options.lod_pixels);
+  if (r.walked)
+    r.portal_policy.record(list_cell, r.list.triangles_behind_portals, r.list.triangles);
+  else if (r.portal_culling && r.portal_view)
+    r.portal_policy.rested(list_cell);
   const DrawList& list = r.list;
 
   glBindFramebuffer(GL_FRAMEBUFFER, target.id());
@@ -616,6 +693,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.polygons_drawn = list.polygons;
   r.stats.triangles_drawn = list.triangles;
   r.stats.draw_ranges = std::uint32_t(list.opaque.counts.size() + list.glass.counts.size());
+  r.stats.cells_seen = r.cells_seen;
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
   r.stats.resolution = reduced ? std::max(0.1f, options.resolution) : 1.0f;
   ++r.stats.frames_drawn;

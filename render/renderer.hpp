@@ -71,6 +71,7 @@ struct FrameStats {
   std::uint32_t polygons_drawn = 0;
   std::uint32_t triangles_drawn = 0;  // at the level of detail drawn
   std::uint32_t draw_ranges = 0;      // glMultiDrawElements entries after merging neighbouring clusters
+  std::uint32_t cells_seen = 0;       // cells reached through portals (0: portal culling did not run)
   std::uint64_t frames_drawn =
       0;  // frames this renderer has drawn (draw() calls and refine() steps that drew)
   RefineStage stage = RefineStage::Moving;          // what the last refine() step did (Idle: drew nothing)
@@ -119,6 +120,12 @@ class Renderer {
   // On by default: also drop the PVS's clusters whose box is wholly outside the view frustum (one box test
   // per cluster per frame). Off: the cell's whole PVS is drawn.
   void set_frustum_culling(bool enabled);
+  // On by default, with the PVS: narrow the view through the cells' portals each frame (Luebke & Georges
+  // 1995) and draw only the clusters the eye's chains of portals show. Bundles without portals draw the PVS.
+  void set_portal_culling(bool enabled);
+  // On by default: a cell whose portal walk hides little rests from it for a while (portal_policy.hpp). Off:
+  // every frame walks (the pixel tests, which must exercise the walk in every view).
+  void set_adaptive_portal_culling(bool enabled);
   void draw(const View& view, int width, int height);
   void draw(const View& view, int width, int height, const DrawOptions& options);
 

@@ -1,10 +1,12 @@
 // walk bench render scene.toml|x.walk...: frame times at 1280x720 along a scripted walk, culled and unculled,
 // with the governor holding the target rate while moving, and what each refinement level and each
 // anti-aliasing sample count costs. One CSV table on stdout.
+#include <fmt/format.h>
 #include <glad/gl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -148,7 +150,7 @@ void print(const std::string& scene, const Row& r) {
 struct Summary {
   std::string scene;
   std::size_t triangles = 0;
-  double walk_p50 = 0.0, walk_p99 = 0.0;  // culled + frustum, patches
+  double walk_p50 = 0.0, walk_p99 = 0.0;  // culled + frustum + portals, patches
   double governed_p50 = 0.0, governed_p99 = 0.0;
 };
 
@@ -185,55 +187,64 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
           "pct,"
           "note\n");
 
-    // Culled and unculled along the same walk; each frame drawn and finished.
-    double p50[3] = {};
-    const char* names[3] = {"unculled", "culled", "culled+frustum"};
-    for (int culled = 0; culled < 3; ++culled) {
-      renderer.set_pvs_culling(culled != 0);
-      renderer.set_frustum_culling(culled == 2);
+    // Unculled, then each culling on top of the one before, along the same walk, alternating view by view so
+    // that the machine's noise falls on every variant alike; each frame drawn and finished.
+    constexpr int kVariants = 4;
+    const char* names[kVariants] = {"unculled", "culled", "culled+frustum", "culled+frustum+portals"};
+    auto set_variant = [&](int k) {
+      renderer.set_pvs_culling(k >= 1);
+      renderer.set_frustum_culling(k >= 2);
+      renderer.set_portal_culling(k >= 3);
+    };
+    std::array<std::vector<double>, kVariants> walk_times;
+    std::array<double, kVariants> walk_polygons{}, walk_triangles{}, cells_seen{};
+    for (int k = 0; k < kVariants; ++k) {
+      set_variant(k);
       renderer.draw(walk.front(), width, height);
       glFinish();
-      std::vector<double> times;
-      double polygons = 0.0, triangles = 0.0;
-      for (const auto& v : walk) {
+    }
+    for (const auto& v : walk) {
+      for (int k = 0; k < kVariants; ++k) {
+        set_variant(k);
         const auto t0 = Clock::now();
         renderer.draw(v, width, height);
-        progress.advance();
         glFinish();
-        times.push_back(ms_since(t0));
-        polygons += renderer.last_stats().polygons_drawn;
-        triangles += renderer.last_stats().triangles_drawn;
+        walk_times[std::size_t(k)].push_back(ms_since(t0));
+        walk_polygons[std::size_t(k)] += renderer.last_stats().polygons_drawn;
+        walk_triangles[std::size_t(k)] += renderer.last_stats().triangles_drawn;
+        cells_seen[std::size_t(k)] += renderer.last_stats().cells_seen;
       }
-      p50[culled] = percentile(times, 0.5);
-      if (culled == 2) summary.walk_p50 = p50[culled], summary.walk_p99 = percentile(times, 0.99);
-      print(scene, {"walk",
-                    names[culled],
-                    times.size(),
-                    p50[culled],
-                    percentile(times, 0.99),
-                    polygons / double(walk.size()),
-                    triangles / double(walk.size()),
-                    {},
-                    "patches; draw + glFinish"});
+      progress.advance();
     }
-    print(scene, {"walk",
-                  "speedup",
-                  walk.size(),
-                  p50[0] / std::max(1e-9, p50[1]),
-                  0,
-                  0,
-                  0,
-                  {},
-                  "p50 unculled / p50 culled"});
-    print(scene, {"walk",
-                  "speedup-frustum",
-                  walk.size(),
-                  p50[0] / std::max(1e-9, p50[2]),
-                  0,
-                  0,
-                  0,
-                  {},
-                  "p50 unculled / p50 culled+frustum"});
+    std::array<double, kVariants> p50{};
+    for (int k = 0; k < kVariants; ++k) {
+      const auto& t = walk_times[std::size_t(k)];
+      p50[std::size_t(k)] = percentile(t, 0.5);
+      if (k == kVariants - 1) summary.walk_p50 = p50[std::size_t(k)], summary.walk_p99 = percentile(t, 0.99);
+      const double n = double(walk.size());
+      print(scene,
+            {"walk",
+             names[k],
+             t.size(),
+             p50[std::size_t(k)],
+             percentile(t, 0.99),
+             walk_polygons[std::size_t(k)] / n,
+             walk_triangles[std::size_t(k)] / n,
+             {},
+             k == 3 ? fmt::format("patches; draw + glFinish; {:.1f} cells seen through portals on average",
+                                  cells_seen[std::size_t(k)] / n)
+                    : std::string("patches; draw + glFinish")});
+    }
+    for (int k = 1; k < kVariants; ++k)
+      print(scene, {"walk",
+                    std::string("speedup-") + names[k],
+                    walk.size(),
+                    p50[0] / std::max(1e-9, p50[std::size_t(k)]),
+                    0,
+                    0,
+                    0,
+                    {},
+                    std::string("p50 unculled / p50 ") + names[k]});
     renderer.set_frustum_culling(true);  // the kiosk's default from here on
 
     // Governed: refine() every frame while moving, culled; the governor picks coarse or patches per cell.
