@@ -153,6 +153,23 @@ TEST(PortalView, BoxesInASplittingPlaneTouchBothCells) {
   EXPECT_EQ(view.unit_cells(3).size(), 0u);
 }
 
+TEST(PortalView, SightStartsInEveryCellTheNearPlaneReaches) {
+  ThreeCells s;
+  // Near plane 5 cm: an eye 1 cm from the wall at x = 4 has its near rectangle in cell 1 already.
+  const glm::vec3 close(3.99f, 1.5f, 1.0f), far(3.0f, 1.5f, 1.0f);
+  EXPECT_EQ(near_cells(s.nodes, 3, 0, close, looking_along_x(close)), (std::vector<std::uint32_t>{0, 1}));
+  EXPECT_EQ(near_cells(s.nodes, 3, 0, far, looking_along_x(far)), (std::vector<std::uint32_t>{0}));
+  // Turned away from the wall, the near rectangle stays in cell 0.
+  EXPECT_EQ(near_cells(s.nodes, 3, 0, close, looking_along_x(close, -1.0f)), (std::vector<std::uint32_t>{0}));
+  // The walk starts in both: cell 1 is seen through the whole screen, not only through the door.
+  PortalView view(s.portals, s.nodes, 3, s.units);
+  view.look(0, close, looking_along_x(close));
+  EXPECT_EQ(view.start_cells().size(), 2u);
+  const NdcRect whole = view.seen_through(1);
+  EXPECT_LE(whole.lo[0], -1.0f);
+  EXPECT_GE(whole.hi[1], 1.0f);
+}
+
 TEST(PortalView, AnEyeOutsideEveryCellSeesEverything) {
   ThreeCells s;
   PortalView view(s.portals, s.nodes, 3, s.units);
