@@ -40,6 +40,7 @@ struct Options {
   int frames = 240;
   double target_hz = 60.0;
   std::string frame_timing = "auto";
+  bool portals = true;  // the governed, level and AA sections walk the portals (the kiosk's default)
 };
 
 double ms_since(Clock::time_point t0) {
@@ -246,6 +247,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
                     {},
                     std::string("p50 unculled / p50 ") + names[k]});
     renderer.set_frustum_culling(true);  // the kiosk's default from here on
+    renderer.set_portal_culling(o.portals);
 
     // Governed: refine() every frame while moving, culled; the governor picks coarse or patches per cell.
     renderer.set_pvs_culling(true);
@@ -452,6 +454,9 @@ void add_bench_render_command(CLI::App& bench, int& exit_code) {
         return render::parse_frame_timing(name) ? std::string()
                                                 : "expected " + std::string(render::kFrameTimingNames);
       });
+  cmd->add_flag("--portals,!--no-portals", o->portals,
+                "Walk the portals in the governed, level and AA sections (default on, as the kiosk); "
+                "--no-portals draws the PVS and frustum alone, to compare runs");
   cmd->callback([o, &exit_code] { exit_code = run(*o); });
 }
 

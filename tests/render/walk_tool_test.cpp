@@ -127,11 +127,12 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
     return std::stod(field);
   };
   EXPECT_LT(polygons("walk,culled,"), polygons("walk,unculled,"));
-  // Two bundles and --plot: one table each (one header) and a size summary with a row per bundle.
+  // Two bundles and --plot (and --no-portals, which the CLI must take): one table each (one header) and a
+  // size summary with a row per bundle.
   const std::string plot = bundle->path() + ".size.png";
   std::string twice;
   ASSERT_EQ(run(kWalk + " bench render " + bundle->path() + " " + bundle->path() +
-                    " --backend osmesa --size 160x120 --frames 12 --plot " + plot,
+                    " --backend osmesa --size 160x120 --frames 12 --no-portals --plot " + plot,
                 twice),
             0)
       << twice;
