@@ -10,6 +10,7 @@
 namespace walk::compiler {
 namespace {
 
+using testing::all_cells;
 using testing::MiniBuilding;
 using testing::missed_pixels;
 using testing::small_judge;
@@ -227,14 +228,8 @@ TEST(Pvs, AWallInsideACellHidesWhatLiesBehindIt) {
     config.proof_pairs = proof_pairs;
     config.detail_area = 0.0;  // the box is structure here: the proof tries structure only
     const VisibilityResult vis = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
-    const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(true));
-    std::uint64_t missed = 0;
-    for (std::uint32_t cell = 0; cell < vis.partition.cells.size(); ++cell) {
-      const Box& box = vis.partition.cells[cell];
-      missed += judge.missed(judge.views(box, cell, portal_viewpoints(vis.graph, box, cell)),
-                             vis.polygon_pvs(cell));
-    }
-    EXPECT_EQ(missed, 0u) << "occluders " << occluders << " proofs " << proof_pairs;
+    EXPECT_EQ(missed_pixels(m, vis, all_cells(vis), true), 0u)
+        << "occluders " << occluders << " proofs " << proof_pairs;
     const std::uint32_t near_room = locate(vis.partition.nodes, {1, 2, 1});
     std::size_t box_faces = 0;
     for (std::uint32_t p = first_box; p < end_box; ++p)
@@ -273,17 +268,12 @@ TEST(Pvs, ProofsOverTheirBudgetShrinkEachAllowanceAndStayConservative) {
       << "each item stops at its allowance (one pair over, the one that finds it spent)";
   EXPECT_LT(capped.proofs.pairs, full.proofs.pairs);
   EXPECT_NE(capped.summary().find("capped at"), std::string::npos) << capped.summary();
-  const VisibilityJudge judge(m.b.vertices, m.b.indices, m.b.polygons, small_judge(true));
-  std::uint64_t missed = 0;
   for (std::uint32_t cell = 0; cell < capped.partition.cells.size(); ++cell) {
-    const Box& box = capped.partition.cells[cell];
-    missed += judge.missed(judge.views(box, cell, portal_viewpoints(capped.graph, box, cell)),
-                           capped.polygon_pvs(cell));
     const auto kept = capped.polygon_pvs(cell);
     for (const auto p : full.polygon_pvs(cell))
       EXPECT_TRUE(has(kept, p)) << "cell " << cell << " polygon " << p;
   }
-  EXPECT_EQ(missed, 0u);
+  EXPECT_EQ(missed_pixels(m, capped, all_cells(capped), true), 0u);
 }
 
 TEST(Pvs, PortalsMeetingAtACellCorner) {

@@ -111,6 +111,13 @@ inline VerifyOptions small_judge(bool cull_back_faces = false) {
   return o;
 }
 
+// Every cell of `vis`, in order.
+inline std::vector<std::uint32_t> all_cells(const VisibilityResult& vis) {
+  std::vector<std::uint32_t> cells(vis.partition.cells.size());
+  for (std::uint32_t c = 0; c < cells.size(); ++c) cells[c] = c;
+  return cells;
+}
+
 // Pixels the PVS of each of `cells` misses, judged from inside each cell and from beside its portals.
 inline std::uint64_t missed_pixels(const MiniBuilding& m, const VisibilityResult& vis,
                                    const std::vector<std::uint32_t>& cells, bool cull_back_faces = false) {
