@@ -205,15 +205,24 @@ std::vector<std::uint32_t> near_cells(std::span<const model::NodeRecord> nodes, 
 }
 
 void PortalView::look(std::uint32_t eye_cell, const glm::vec3& eye, const glm::mat4& view_projection) {
+  if (eye_cell >= seen_through_.size()) {
+    look_from({}, eye, view_projection);
+    return;
+  }
+  look_from(near_cells(nodes_, seen_through_.size(), eye_cell, eye, view_projection), eye, view_projection);
+}
+
+void PortalView::look_from(std::span<const std::uint32_t> starts, const glm::vec3& eye,
+                           const glm::mat4& view_projection) {
   for (const std::uint32_t c : reached_) seen_through_[c] = NdcRect{};
   reached_.clear();
-  start_.clear();
+  start_.assign(starts.begin(), starts.end());
   passed_ = 0;
-  everything_ = eye_cell >= seen_through_.size();
+  everything_ = starts.empty() || std::any_of(starts.begin(), starts.end(),
+                                              [&](std::uint32_t c) { return c >= seen_through_.size(); });
   if (everything_) return;
   view_projection_ = view_projection;
   ++frame_;
-  start_ = near_cells(nodes_, seen_through_.size(), eye_cell, eye, view_projection);
   std::vector<std::uint32_t> work = start_;
   for (const std::uint32_t cell : work) {
     if (seen_through_[cell].empty()) reached_.push_back(cell);

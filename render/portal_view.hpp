@@ -57,6 +57,10 @@ class PortalView {
   // Per frame: the cells seen from `eye` (in `eye_cell`) through `view_projection`, and the rectangle each
   // is seen through. An eye cell out of range sees everything.
   void look(std::uint32_t eye_cell, const glm::vec3& eye, const glm::mat4& view_projection);
+  // The same from `starts`, the near_cells() of the view, when the caller has them already. None, or one
+  // out of range: everything is seen.
+  void look_from(std::span<const std::uint32_t> starts, const glm::vec3& eye,
+                 const glm::mat4& view_projection);
   // After look(): may unit `u` show in this frame?
   [[nodiscard]] bool shows(std::uint32_t u) const;
 

@@ -175,7 +175,8 @@ struct Renderer::Impl {
     near_units.erase(std::unique(near_units.begin(), near_units.end()), near_units.end());
     return near_units;
   }
-  // Per frame: the cell's units, less those outside the frustum when one is given.
+  // The cell's units, less those outside the frustum when one is given (frames go through frame_list,
+  // which adds the near cells and the portal walk; the map overlay draws every unit through this).
   DrawList list_for(std::uint32_t cell, bool coarse, const Frustum* frustum, const LodChoice* lod = nullptr) {
     return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, units_for(cell), frustum, lod);
   }
@@ -219,7 +220,7 @@ struct Renderer::Impl {
         walked =
             portal_culling && portal_view && !near_all && (!adaptive_portals || portal_policy.walk(cell));
         if (walked) {
-          portal_view->look(cell, eye, view_projection_matrix);
+          portal_view->look_from(starts, eye, view_projection_matrix);
           cells_seen = portal_view->sees_everything() ? 0u : std::uint32_t(portal_view->cells_reached());
         }
         seen_cell = cell;
