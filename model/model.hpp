@@ -4,9 +4,12 @@
 // authored far from the world origin keep full precision; rendering converts local coordinates to float.
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "model/intensity_distribution.hpp"
 
 namespace walk::model {
 
@@ -67,7 +70,9 @@ struct Polygon {
 
 // What shape a luminaire emits from: an area panel, or a point (Quake `light` entities) emitting in all
 // directions or, for a spot, into a cone about `normal`.
-enum class LuminaireKind : std::uint8_t { Area = 0, Point = 1, Spot = 2 };
+// Photometric: a point emitting as its measured intensity distribution (IES LM-63 or EULUMDAT), aimed
+// along `normal` (gamma 0) with its C0 plane towards `u_axis`.
+enum class LuminaireKind : std::uint8_t { Area = 0, Point = 1, Spot = 2, Photometric = 3 };
 
 // An area luminaire: a rectangle centred at `position`, emitting into the half-space of `normal`. Point and
 // spot luminaires use `position`, `power` and, for spots, `normal` (the cone axis), `cone` and `exponent`.
@@ -83,6 +88,7 @@ struct Luminaire {
   double height = 0.6;
   Rgb power{100.0, 100.0, 100.0};  // radiant power per channel, watts
   std::uint32_t circuit = 0;
+  std::shared_ptr<const IntensityDistribution> distribution;  // Photometric only; its shape, not its scale
 };
 
 // A light circuit: luminaires switched and dimmed together by one dimmer channel.

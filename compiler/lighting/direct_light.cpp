@@ -8,6 +8,7 @@
 #include <random>
 
 #include "common/parallel_for.hpp"
+#include "compiler/photometry/emission.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -34,9 +35,11 @@ void panel_points(const model::Luminaire& l, int n, std::mt19937_64& rng, std::v
   }
 }
 
-// Radiant intensity per watt of a point light towards unit direction `w` (W/sr per W): uniform over the
-// sphere, or cos^n about the axis inside the cone, normalised so the light emits exactly its power.
+// Radiant intensity per watt of a point light towards unit direction `w` (W/sr per W): its measured table,
+// uniform over the sphere, or cos^n about the axis inside the cone, normalised so the light emits exactly its
+// power.
 double intensity_per_watt(const model::Luminaire& l, const model::Vec3& w) {
+  if (l.kind == model::LuminaireKind::Photometric) return photometric_intensity_per_watt(l, w);
   const double cone =
       l.kind == model::LuminaireKind::Spot ? std::min(l.cone, std::numbers::pi) : std::numbers::pi;
   const double n = l.kind == model::LuminaireKind::Spot ? l.exponent : 0.0;

@@ -51,6 +51,7 @@ model::Vec3 point_direction(const PointEmitter& e, std::uint32_t index, std::uin
     u1 = ((index % side) + u1) / side;
     u2 = ((index / side) + u2) / side;
   }
+  if (e.sampler) return e.sampler->sample(u1, u2);
   const double cos_min = std::cos(std::min(e.cone, std::numbers::pi));
   double cos_theta;
   if (e.exponent > 0.0) {  // pdf ~ cos^n on [max(cos_min, 0), 1]: nothing leaves behind the spot's plane

@@ -10,10 +10,12 @@
 // patch.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "compiler/photometry/emission.hpp"
 #include "compiler/radiosity/patch_set.hpp"
 
 namespace walk::compiler {
@@ -26,7 +28,8 @@ struct AreaEmitter {
 };
 
 // A point or spot luminaire: power leaves `position` with intensity proportional to cos^exponent of the angle
-// to `axis`, inside a cone of half-angle `cone` (pi: an isotropic point light).
+// to `axis`, inside a cone of half-angle `cone` (pi: an isotropic point light), or, when `sampler` is set, as
+// a measured intensity distribution.
 struct PointEmitter {
   model::Vec3 position{0.0};
   model::Vec3 axis{0.0, 0.0, -1.0};
@@ -34,6 +37,7 @@ struct PointEmitter {
   double exponent = 0.0;
   model::Rgb power{0.0};
   std::uint32_t circuit = 0;
+  std::shared_ptr<const EmissionSampler> sampler;
 };
 
 struct RadiosityOptions {

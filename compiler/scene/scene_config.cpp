@@ -6,8 +6,13 @@
 #include <cmath>
 #include <filesystem>
 #include <glm/geometric.hpp>
+#include <map>
+#include <memory>
 #include <numbers>
 
+#include "compiler/photometry/colour_temperature.hpp"
+#include "compiler/photometry/photometric_units.hpp"
+#include "compiler/photometry/photometry_file.hpp"
 #include "compiler/raycast/ray_caster.hpp"
 #include "compiler/scene/units.hpp"
 #include "model/error.hpp"
@@ -41,6 +46,37 @@ double positive(const TomlTable& t, const std::string& key, double fallback) {
   if (!(*v > 0.0)) t.fail(key, "must be greater than 0");
   return *v;
 }
+
+// A light's colour: `colour` (RGB) or `cct` (kelvin), not both.
+model::Rgb light_colour(const TomlTable& t, model::Rgb fallback) {
+  if (t.has("colour") && t.has("cct")) t.fail("cct", "give `colour` or `cct`, not both");
+  if (!t.has("cct")) {
+    return rgb01(t, "colour", fallback);
+  }
+  const double k = t.number("cct", 0.0, kMinCct, kMaxCct);
+  const model::Rgb c = cct_colour(k);
+  return c / std::max({c.r, c.g, c.b});  // brightest channel 1, as an RGB `colour` is written
+}
+
+// A light's radiant power per unit of `colour`: `power` (W per channel) or `flux` (lumens), not both.
+double light_power(const TomlTable& t, const model::Rgb& colour, double fallback_watts) {
+  if (t.has("power") && t.has("flux")) t.fail("flux", "give `power` (W) or `flux` (lm), not both");
+  if (!t.has("flux")) return positive(t, "power", fallback_watts);
+  if (!(luminance_weight(colour) > 0.0)) t.fail("colour", "must not be black when `flux` gives the lumens");
+  return positive(t, "flux", 1.0) / (kLumensPerWatt * luminance_weight(colour));
+}
+
+// A direction given as [x, y, z]: not zero, returned unit length.
+model::Vec3 unit_vector(const TomlTable& t, const std::string& key, model::Vec3 fallback) {
+  model::Vec3 v = fallback;
+  if (const auto n = t.numbers(key, 3)) v = {(*n)[0], (*n)[1], (*n)[2]};
+  if (!(glm::dot(v, v) > 1e-12) || !std::isfinite(glm::dot(v, v)))
+    t.fail(key, "must be a finite, non-zero direction");
+  return glm::normalize(v);
+}
+
+// |cos| between a fixture's aim and its C0 direction beyond which C0 is undefined (about 2.6 degrees).
+constexpr double kAlongAim = 0.999;
 
 // Formats import_model reads: DXF (3D), a 2D DXF plan, Quake .map, and meshes through assimp.
 constexpr const char* kFormats[] = {"dxf", "plan", "map", "obj", "gltf", "glb",
@@ -203,9 +239,9 @@ model::Vec3 panel_width_axis(const model::Vec3& normal) {
 void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
   const auto lum = root.table("luminaires");
   if (!lum) return;
-  lum->only({"per_group", "panel"});
+  lum->only({"per_group", "panel", "fixture"});
   if (const auto pg = lum->table("per_group")) {
-    pg->only({"enabled", "size", "power", "colour", "drop", "exclude_groups"});
+    pg->only({"enabled", "size", "power", "flux", "colour", "cct", "drop", "exclude_groups"});
     auto& p = cfg.panels;
     p.enabled = pg->boolean("enabled").value_or(true);
     if (const auto size = pg->numbers("size", 2)) {
@@ -213,15 +249,15 @@ void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
       p.height = (*size)[1];
       if (!(p.width > 0 && p.height > 0)) pg->fail("size", "both sides must be greater than 0");
     }
-    p.power = positive(*pg, "power", p.power);
-    p.colour = rgb01(*pg, "colour", p.colour);
+    p.colour = light_colour(*pg, p.colour);
+    p.power = light_power(*pg, p.colour, p.power);
     p.drop = pg->number("drop").value_or(p.drop);
     if (!(p.drop >= 0))
       pg->fail("drop", "must be 0 or more (metres below the ceiling; less puts the panel above it)");
     if (pg->has("exclude_groups")) p.exclude_groups = compile_regex(*pg, "exclude_groups");
   }
   for (const auto& t : lum->array_of_tables("panel")) {
-    t.only({"name", "position", "normal", "size", "power", "colour", "circuit"});
+    t.only({"name", "position", "normal", "size", "power", "flux", "colour", "cct", "circuit"});
     model::Luminaire l;
     l.name = t.string("name").value_or("panel" + std::to_string(cfg.luminaires.size()));
     const auto pos = t.numbers("position", 3);
@@ -236,7 +272,42 @@ void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
       l.height = (*size)[1];
       if (!(l.width > 0 && l.height > 0)) t.fail("size", "both sides must be greater than 0");
     }
-    l.power = rgb01(t, "colour", {1, 1, 1}) * positive(t, "power", 60.0);
+    const model::Rgb colour = light_colour(t, {1, 1, 1});
+    l.power = colour * light_power(t, colour, 60.0);
+    cfg.luminaires.push_back(l);
+    cfg.luminaire_circuits.push_back(t.string("circuit").value_or(l.name));
+  }
+  std::map<std::string, std::shared_ptr<const model::IntensityDistribution>> files;  // each read once
+  for (const auto& t : lum->array_of_tables("fixture")) {
+    t.only({"name", "position", "aim", "c0", "photometry", "flux", "colour", "cct", "circuit"});
+    model::Luminaire l;
+    l.kind = model::LuminaireKind::Photometric;
+    l.name = t.string("name").value_or("fixture" + std::to_string(cfg.luminaires.size()));
+    const auto pos = t.numbers("position", 3);
+    if (!pos) t.fail("position", "missing: give [x, y, z] in model units");
+    l.position = model::Vec3((*pos)[0], (*pos)[1], (*pos)[2]) * cfg.metres_per_unit;
+    l.normal = unit_vector(t, "aim", {0, 0, -1});
+    l.u_axis = t.has("c0") ? unit_vector(t, "c0", {1, 0, 0}) : panel_width_axis(l.normal);
+    if (std::abs(glm::dot(l.u_axis, l.normal)) > kAlongAim)
+      t.fail("c0", "must not lie along `aim`: it is the direction of the luminaire's C0 plane");
+    const auto file = t.string("photometry");
+    if (!file) t.fail("photometry", "missing: name the luminaire's IES (.ies) or EULUMDAT (.ldt) file");
+    fs::path p(*file);
+    if (p.is_relative()) p = fs::path(cfg.path).parent_path() / p;
+    const std::string path = p.lexically_normal().string();
+    auto& d = files[path];
+    if (!d) {
+      try {
+        d = std::make_shared<const model::IntensityDistribution>(read_photometry_file(path));
+      } catch (const Error& e) {
+        t.fail("photometry", e.what());
+      }
+    }
+    l.distribution = d;
+    const model::Rgb colour = light_colour(t, {1, 1, 1});
+    // The file's flux unless the scene gives the lamp's: a table is a shape, `flux` its scale.
+    const double lumens = t.has("flux") ? positive(t, "flux", 1.0) : d->lumens;
+    l.power = power_from_lumens(lumens, colour);
     cfg.luminaires.push_back(l);
     cfg.luminaire_circuits.push_back(t.string("circuit").value_or(l.name));
   }
@@ -282,7 +353,7 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("lighting");
   if (!t) return;
   t->only({"method", "grid", "samples_per_luminaire", "rays_per_watt", "residual", "ambient", "exposure",
-           "ray_caster"});
+           "white_luminance", "ray_caster"});
   auto& l = cfg.lighting;
   if (const auto m = t->string("method")) {
     if (*m == "radiosity")
@@ -304,7 +375,12 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   l.ambient = t->number("ambient").value_or(l.ambient);
   if (l.ambient < 0.0) t->fail("ambient", "must not be negative");
   read_ray_caster(*t, cfg, "lighting", l.ray_caster);
+  if (t->has("exposure") && t->has("white_luminance"))
+    t->fail("white_luminance", "give `exposure` (W/m2) or `white_luminance` (cd/m2), not both");
   if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);
+  // A diffuse surface of radiosity B (W/m2 per channel, white) has luminance 179 B / pi cd/m2.
+  if (t->has("white_luminance"))
+    l.exposure = positive(*t, "white_luminance", 1.0) * std::numbers::pi / kLumensPerWatt;
 }
 
 void read_visibility(const TomlTable& root, SceneConfig& cfg) {

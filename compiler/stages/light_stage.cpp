@@ -42,6 +42,7 @@ class LightStage final : public Stage {
       const double shape[] = {double(lum.kind), lum.cone,       lum.exponent,
                               lum.position.x,   lum.position.y, lum.position.z};
       h = hash_bytes(h, shape, sizeof shape);
+      if (lum.distribution) h = hash_bytes(h ^ lum.distribution->hash(), &lum.u_axis, sizeof lum.u_axis);
     }
     return hash_bytes(h, l.ray_caster.data(), l.ray_caster.size());
   }
@@ -79,9 +80,12 @@ class LightStage final : public Stage {
     std::vector<PointEmitter> points;
     for (const auto& l : model.luminaires) {
       if (l.kind == model::LuminaireKind::Area) continue;
-      points.push_back({l.position, l.normal,
-                        l.kind == model::LuminaireKind::Spot ? l.cone : std::numbers::pi,
-                        l.kind == model::LuminaireKind::Spot ? l.exponent : 0.0, l.power, l.circuit});
+      std::shared_ptr<const EmissionSampler> sampler;
+      if (l.kind == model::LuminaireKind::Photometric && l.distribution)
+        sampler = std::make_shared<const EmissionSampler>(*l.distribution, PhotometricFrame(l));
+      points.push_back(
+          {l.position, l.normal, l.kind == model::LuminaireKind::Spot ? l.cone : std::numbers::pi,
+           l.kind == model::LuminaireKind::Spot ? l.exponent : 0.0, l.power, l.circuit, std::move(sampler)});
     }
     RadiosityOptions ro;
     ro.rays_per_watt = s.config.lighting.rays_per_watt;

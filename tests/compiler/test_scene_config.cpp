@@ -252,3 +252,79 @@ TEST_F(SceneConfigTest, PanelSizesAndDropsThatMakeNoPanelAreRefused) {
 
 }  // namespace
 }  // namespace walk::compiler
+
+namespace walk::compiler {
+namespace {
+
+// Luminaires in photometric terms: lumens, colour temperature, measured distributions, white luminance.
+class PhotometricSceneTest : public SceneConfigTest {
+ protected:
+  void SetUp() override {
+    ies_ = (fs::temp_directory_path() / ("walk_fixture_" + std::to_string(::getpid()) + ".ies")).string();
+    // Isotropic 100 cd: 400 pi lm.
+    std::ofstream(ies_)
+        << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n100 100 100\n";
+  }
+  void TearDown() override {
+    fs::remove(ies_);
+    SceneConfigTest::TearDown();
+  }
+  std::string ies_;
+};
+
+double luminance_of(const model::Rgb& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+TEST_F(PhotometricSceneTest, FixturesPanelsAndExposureInPhotometricUnits) {
+  const std::string name = fs::path(ies_).filename().string();
+  const auto cfg = load_scene_config(
+      write("[model]\nfile = \"a.obj\"\n[lighting]\nwhite_luminance = 100\n"
+            "[[luminaires.panel]]\nposition = [0, 0, 3]\nflux = 1790\ncct = 3000\n"
+            "[[luminaires.fixture]]\nname = \"down\"\nposition = [1, 0, 3]\nphotometry = \"" +
+            name +
+            "\"\n"
+            "[[luminaires.fixture]]\nposition = [2, 0, 3]\nphotometry = \"" +
+            name + "\"\nflux = 179\naim = [0, 1, 0]\n"));
+  ASSERT_EQ(cfg.luminaires.size(), 3u);
+  const auto& panel = cfg.luminaires[0];
+  EXPECT_NEAR(luminance_of(panel.power), 10.0, 1e-9);  // 1790 lm at 179 lm/W
+  EXPECT_GT(panel.power.r, panel.power.b);             // 3000 K is warm
+  const auto& down = cfg.luminaires[1];
+  EXPECT_EQ(down.kind, model::LuminaireKind::Photometric);
+  ASSERT_TRUE(down.distribution);
+  EXPECT_NEAR(luminance_of(down.power), 400.0 * std::acos(-1.0) / 179.0, 1e-3);  // the file's own flux
+  EXPECT_EQ(cfg.luminaires[2].distribution, down.distribution);                  // one file, read once
+  EXPECT_NEAR(luminance_of(cfg.luminaires[2].power), 1.0, 1e-9);                 // `flux` rescales the table
+  EXPECT_NEAR(cfg.luminaires[2].normal.y, 1.0, 1e-12);
+  ASSERT_TRUE(cfg.lighting.exposure);
+  EXPECT_NEAR(*cfg.lighting.exposure, 100.0 * std::acos(-1.0) / 179.0, 1e-12);
+}
+
+TEST_F(PhotometricSceneTest, BadPhotometricKeysNameTheKeyAndTheFile) {
+  const std::string head = "[model]\nfile = \"a.obj\"\n";
+  const std::string both =
+      error_of(head + "[[luminaires.panel]]\nposition = [0, 0, 3]\npower = 5\nflux = 100\n");
+  EXPECT_NE(both.find("luminaires.panel"), std::string::npos) << both;
+  EXPECT_NE(both.find("not both"), std::string::npos) << both;
+  const std::string cold = error_of(head + "[luminaires.per_group]\ncct = 500\n");
+  EXPECT_NE(cold.find("luminaires.per_group.cct"), std::string::npos) << cold;
+  const std::string missing =
+      error_of(head + "[[luminaires.fixture]]\nposition = [0, 0, 3]\nphotometry = \"nowhere.ies\"\n");
+  EXPECT_NE(missing.find("photometry"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("nowhere.ies"), std::string::npos) << missing;
+  std::ofstream(ies_)
+      << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n100 lots 100\n";
+  const std::string bad = error_of(head + "[[luminaires.fixture]]\nposition = [0, 0, 3]\nphotometry = \"" +
+                                   fs::path(ies_).filename().string() + "\"\n");
+  EXPECT_NE(bad.find(":7: 'lots' where a candela value should be"), std::string::npos) << bad;
+  const std::string exposure = error_of(head + "[lighting]\nexposure = 1\nwhite_luminance = 100\n");
+  EXPECT_NE(exposure.find("lighting.white_luminance"), std::string::npos) << exposure;
+  const std::string c0 = error_of(head +
+                                  "[[luminaires.fixture]]\nposition = [0, 0, 3]\nc0 = [0, 0, 1]\n"
+                                  "photometry = \"x.ies\"\n");
+  EXPECT_NE(c0.find("luminaires.fixture[0].c0"), std::string::npos) << c0;
+}
+
+}  // namespace
+}  // namespace walk::compiler
