@@ -97,6 +97,34 @@ std::uint32_t BundleContents::add_string(std::string_view s) {
   return offset;
 }
 
+void Bundle::validate_luminaire_shapes() const {
+  const auto fail = [&](const std::string& what) {
+    throw Error(located(path_, 0, "corrupt bundle: " + what, "recompile it with `walk compile`"));
+  };
+  if (!luminaire_shapes_.empty() && luminaire_shapes_.size() != luminaires_.size())
+    fail("LMSH holds " + std::to_string(luminaire_shapes_.size()) + " records, expected one per luminaire");
+  for (std::size_t i = 0; i < luminaire_shapes_.size(); ++i) {
+    const auto& l = luminaire_shapes_[i];
+    const std::string name = "LMSH " + std::to_string(i);
+    if (l.kind > 3) fail(name + " has an unknown kind");
+    if (!std::isfinite(l.cone) || !std::isfinite(l.exponent) || l.exponent < 0.0f)
+      fail(name + " has a non-finite cone or a negative exponent");
+    if ((l.kind == 3) != (l.distribution != kNoDistribution) ||
+        (l.distribution != kNoDistribution && l.distribution >= distributions_.size()))
+      fail(name + " refers to a distribution out of range, or a fixture lacks one");
+  }
+  for (std::size_t i = 0; i < distributions_.size(); ++i) {
+    const auto& d = distributions_[i];
+    const std::uint64_t values =
+        std::uint64_t(d.gamma_count) + d.c_count + std::uint64_t(d.gamma_count) * d.c_count;
+    if (d.gamma_count == 0 || d.c_count == 0 || d.first > distribution_values_.size() ||
+        values > distribution_values_.size() - d.first || !(d.lumens > 0.0f))
+      fail("DIST " + std::to_string(i) + " runs past DSTV, is empty or emits nothing");
+  }
+  for (float v : distribution_values_)
+    if (!std::isfinite(v) || v < 0.0f) fail("DSTV holds a negative or non-finite value");
+}
+
 void Bundle::validate_textures() const {
   const auto fail = [&](const std::string& what) {
     throw Error(located(path_, 0, "corrupt bundle: " + what, "recompile it with `walk compile`"));
@@ -140,6 +168,9 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kGroups, c.groups),
       pending(section::kCircuits, c.circuits),
       pending(section::kLuminaires, c.luminaires),
+      pending(section::kLuminaireShapes, c.luminaire_shapes),
+      pending(section::kDistributions, c.distributions),
+      pending(section::kDistributionValues, c.distribution_values),
       pending(section::kLight, c.light),
       pending(section::kCompactColour, c.compact_colour),
       pending(section::kCompactIntensity, c.compact_intensity),
@@ -291,6 +322,9 @@ void Bundle::validate() {
   get(section::kGroups, groups_, true);
   get(section::kCircuits, circuits_, true);
   get(section::kLuminaires, luminaires_, true);
+  get(section::kLuminaireShapes, luminaire_shapes_, false);
+  get(section::kDistributions, distributions_, false);
+  get(section::kDistributionValues, distribution_values_, false);
   get(section::kLight, light_, true);
   get(section::kCompactColour, compact_colour_, false);
   get(section::kCompactIntensity, compact_intensity_, false);
@@ -377,6 +411,7 @@ void Bundle::validate() {
     check_string(l.name, "LUMS");
     if (l.circuit >= circuits_.size()) fail("LUMS refers to a circuit out of range");
   }
+  validate_luminaire_shapes();
   for (const auto& s : stages_) check_string(s.name, "STAG");
   if (cells_.empty()) fail("CELL is empty: a bundle has at least one cell");
   for (std::size_t i = 0; i < cells_.size(); ++i) {

@@ -23,6 +23,9 @@ struct BundleContents {
   std::vector<GroupRecord> groups;
   std::vector<CircuitRecord> circuits;
   std::vector<LuminaireRecord> luminaires;
+  std::vector<LuminaireShapeRecord> luminaire_shapes;  // empty, or one per luminaire
+  std::vector<DistributionRecord> distributions;
+  std::vector<float> distribution_values;
   std::vector<float> light;                                 // vertices.size() * circuits.size() * 3
   std::vector<std::array<std::uint8_t, 4>> compact_colour;  // empty, or one per vertex
   std::vector<std::uint8_t> compact_intensity;              // empty, or vertices * circuits
@@ -74,6 +77,10 @@ class Bundle {
   [[nodiscard]] std::span<const GroupRecord> groups() const { return groups_; }
   [[nodiscard]] std::span<const CircuitRecord> circuits() const { return circuits_; }
   [[nodiscard]] std::span<const LuminaireRecord> luminaires() const { return luminaires_; }
+  // Empty in bundles written before shapes were stored: then every luminaire reads as an area panel.
+  [[nodiscard]] std::span<const LuminaireShapeRecord> luminaire_shapes() const { return luminaire_shapes_; }
+  [[nodiscard]] std::span<const DistributionRecord> distributions() const { return distributions_; }
+  [[nodiscard]] std::span<const float> distribution_values() const { return distribution_values_; }
   [[nodiscard]] std::span<const float> light() const { return light_; }
   [[nodiscard]] std::span<const std::array<std::uint8_t, 4>> compact_colour() const {
     return compact_colour_;
@@ -111,6 +118,7 @@ class Bundle {
   Bundle() = default;
   void validate();
   void validate_textures() const;
+  void validate_luminaire_shapes() const;
 
   std::string path_;
   void* map_ = nullptr;
@@ -123,6 +131,9 @@ class Bundle {
   std::span<const GroupRecord> groups_;
   std::span<const CircuitRecord> circuits_;
   std::span<const LuminaireRecord> luminaires_;
+  std::span<const LuminaireShapeRecord> luminaire_shapes_;
+  std::span<const DistributionRecord> distributions_;
+  std::span<const float> distribution_values_;
   std::span<const float> light_;
   std::span<const std::array<std::uint8_t, 4>> compact_colour_;
   std::span<const std::uint8_t> compact_intensity_;

@@ -97,6 +97,28 @@ struct LuminaireRecord {
 };
 static_assert(sizeof(LuminaireRecord) == 64);
 
+// How a luminaire emits, optional (one per LUMS record; a bundle without LMSH has area panels only as far as
+// readers know): kind is model::LuminaireKind; cone and exponent shape spots; distribution indexes DIST for
+// photometric fixtures (aimed along `normal`, C0 towards `u_axis`), kNoDistribution otherwise.
+inline constexpr std::uint32_t kNoDistribution = 0xffffffffu;
+struct LuminaireShapeRecord {
+  std::uint32_t kind;
+  float cone;
+  float exponent;
+  std::uint32_t distribution;
+};
+static_assert(sizeof(LuminaireShapeRecord) == 16);
+
+// A measured intensity table (model::IntensityDistribution): DSTV floats from `first`, gamma_count gamma
+// angles, c_count C angles, then c_count x gamma_count candela, [c][gamma]; `lumens` its integrated flux.
+struct DistributionRecord {
+  std::uint32_t first;
+  std::uint32_t gamma_count;
+  std::uint32_t c_count;
+  float lumens;
+};
+static_assert(sizeof(DistributionRecord) == 16);
+
 // The coarse display while moving, optional: a polygon's fewest triangles (its outline, no lighting grid),
 // as a range of CIDX whose indices are vertices of the polygon's own VERT range. One record per polygon.
 struct CoarseRangeRecord {
@@ -212,6 +234,9 @@ inline constexpr std::uint32_t kMaterials = tag("MATL");
 inline constexpr std::uint32_t kGroups = tag("GRPS");
 inline constexpr std::uint32_t kCircuits = tag("CIRC");
 inline constexpr std::uint32_t kLuminaires = tag("LUMS");
+inline constexpr std::uint32_t kLuminaireShapes = tag("LMSH");     // optional, see LuminaireShapeRecord
+inline constexpr std::uint32_t kDistributions = tag("DIST");       // optional, see DistributionRecord
+inline constexpr std::uint32_t kDistributionValues = tag("DSTV");  // float
 inline constexpr std::uint32_t kLight = tag("LGHT");  // float RGB per vertex per circuit: [v][c][3]
 // The paper's compact light form, optional: u8 RGBA average colour per vertex, and u8 per vertex per circuit
 // (square-root coded against CircuitRecord::compact_scale). Radiosity = colour/255 * scale * (code/255)^2.

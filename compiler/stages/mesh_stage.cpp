@@ -13,6 +13,7 @@
 #include "compiler/scene/work_budget.hpp"
 #include "compiler/stages/stages.hpp"
 #include "compiler/textures/polygon_textures.hpp"
+#include "model/luminaire_shapes.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -149,6 +150,7 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
     panel_luminaire.push_back(i);
   }
   for (const auto& l : s.model.luminaires) out.luminaires.push_back(luminaire_record(l));
+  model::store_luminaire_shapes(s.model.luminaires, out);
 
   std::vector<std::pair<const model::Polygon*, std::uint32_t>> to_emit;  // (polygon, luminaire or none)
   for (const auto& p : s.model.polygons)

@@ -55,6 +55,18 @@ if "$walk" compile "$src/config/scenes/house.toml" -o "$tmp/good.walk" >/dev/nul
 else
   failures=$((failures + 1)); echo "FAIL good bundle"
 fi
+# `walk probe` on the good bundle: a reading in lux per circuit and mixed; a wrong dimmer count names the
+# circuits.
+probe_out=$("$walk" probe "$tmp/good.walk" --at 0,0,0.8 --rays 256 2>&1)
+if grep -q "^mix: [0-9.]* lx" <<<"$probe_out" && [ "$(grep -c " 1.00 " <<<"$probe_out")" -eq 16 ]; then
+  passed=$((passed + 1)); echo "ok   probe reads lux per circuit"
+else
+  failures=$((failures + 1)); echo "FAIL probe: $probe_out"
+fi
+check "probe: dimmer count" "" "--dimmers gives 2 levels" "16 circuits" -- \
+  "$walk" probe "$tmp/good.walk" --at 0,0,0.8 --dimmers 1,0.5
+check "probe: zero normal" "" "--normal must be a finite, non-zero direction" -- \
+  "$walk" probe "$tmp/good.walk" --at 0,0,0.8 --normal 0,0,0
 size=$(stat -c %s "$tmp/good.walk")
 printf '\x5a' | dd of="$tmp/good.walk" bs=1 seek=$((size / 2)) conv=notrunc status=none
 check "flipped byte" "" "good.walk" "corrupt bundle" -- "$walk" inspect "$tmp/good.walk"

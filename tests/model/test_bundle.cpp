@@ -10,6 +10,7 @@
 
 #include "model/bundle.hpp"
 #include "model/error.hpp"
+#include "model/luminaire_shapes.hpp"
 
 namespace walk::model {
 namespace {
@@ -249,6 +250,51 @@ TEST_F(BundleTest, PortalsAreReadAndValidated) {
   broken([](PortalRecord& p) { p.flags |= 16; }, "an unknown flag");
   broken([](PortalRecord& p) { p.bounds_max[1] = std::nanf(""); }, "a NaN corner");
   broken([](PortalRecord& p) { p.bounds_min[2] = 2.0f; }, "an inverted box");
+}
+
+TEST_F(BundleTest, LuminaireShapesAndDistributionsRoundTripAndAreValidated) {
+  BundleContents c = small_bundle();
+  auto table = std::make_shared<IntensityDistribution>();
+  table->gamma_deg = {0, 90, 180};
+  table->c_deg = {0, 180, 360};
+  table->candela = {10, 5, 0, 20, 10, 0, 10, 5, 0};
+  table->lumens = 50.0;
+  std::vector<Luminaire> lights(3);
+  lights[0].kind = LuminaireKind::Area;
+  lights[1].kind = LuminaireKind::Spot;
+  lights[1].cone = 0.5;
+  lights[1].exponent = 4.0;
+  lights[2].kind = LuminaireKind::Photometric;
+  lights[2].distribution = table;
+  for (const auto& l : lights) {
+    c.luminaires.push_back({});
+    c.luminaires.back().name = c.add_string("l");
+  }
+  store_luminaire_shapes(lights, c);
+  write_bundle(path_, c);
+  {
+    const auto b = Bundle::open(path_);
+    const auto back = load_luminaires(*b);
+    ASSERT_EQ(back.size(), 3u);
+    EXPECT_EQ(back[1].kind, LuminaireKind::Spot);
+    EXPECT_FLOAT_EQ(static_cast<float>(back[1].exponent), 4.0f);
+    ASSERT_TRUE(back[2].distribution);
+    EXPECT_DOUBLE_EQ(back[2].distribution->candela_at(45, 90), 0.5 * (7.5 + 15.0));  // bilinear
+    EXPECT_DOUBLE_EQ(back[2].distribution->lumens, 50.0);
+  }
+  auto broken = [&](auto&& change, const char* what, const char* expected) {
+    BundleContents d = c;
+    change(d);
+    write_bundle(path_, d);
+    const std::string error = open_error();
+    EXPECT_NE(error.find(expected), std::string::npos) << what << ": " << error;
+  };
+  broken([](BundleContents& d) { d.luminaire_shapes[0].kind = 9; }, "an unknown kind", "LMSH 0");
+  broken([](BundleContents& d) { d.luminaire_shapes[2].distribution = 1; }, "a table out of range", "LMSH 2");
+  broken([](BundleContents& d) { d.luminaire_shapes[1].distribution = 0; }, "a spot with a table", "LMSH 1");
+  broken([](BundleContents& d) { d.luminaire_shapes.pop_back(); }, "one short", "LMSH holds 2");
+  broken([](BundleContents& d) { d.distributions[0].c_count = 4; }, "a table past DSTV", "DIST 0");
+  broken([](BundleContents& d) { d.distribution_values[4] = -1.0f; }, "a negative candela", "DSTV");
 }
 
 TEST_F(BundleTest, LevelsOfDetailAreReadAndValidated) {

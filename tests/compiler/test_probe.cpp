@@ -1,0 +1,121 @@
+// walk probe's meter: a compiled CIE 171:2006 case 5.8 cube (a 10,000 lm isotropic fixture at the centre of
+// a 4 m cube of reflectance 0.5) read at points over every face averages to the closed form
+// E = flux / (S (1 - rho)); a meter inside a wall says so; a look ray reads luminance B / pi.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "compiler/lighting/probe.hpp"
+#include "compiler/pipeline.hpp"
+#include "model/bundle.hpp"
+#include "model/luminaire_shapes.hpp"
+
+namespace walk::compiler {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kFlux = 10000.0, kSide = 4.0, kRho = 0.5;
+
+class ProbeTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("walk_probe_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    // The cube, faces turned inwards.
+    std::ofstream(dir_ / "cube.obj")
+        << "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 0 0 4\nv 4 0 4\nv 4 4 4\nv 0 4 4\n"
+           "f 1 2 3 4\nf 5 8 7 6\nf 1 4 8 5\nf 2 6 7 3\nf 1 5 6 2\nf 4 3 7 8\n";
+    // An isotropic table; its flux is rescaled to 10,000 lm by the scene.
+    std::ofstream(dir_ / "iso.ies")
+        << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n"
+           "100 100 100\n";
+    std::ofstream(dir_ / "cube.toml") << "[model]\nfile = \"cube.obj\"\nup = \"z\"\n"
+                                         "[[rules]]\nlayer = \".*\"\nmaterial = \"grey\"\n"
+                                         "[materials.grey]\nreflectance = [0.5, 0.5, 0.5]\n"
+                                         "[[luminaires.fixture]]\nname = \"centre\"\nposition = [2, 2, 2]\n"
+                                         "photometry = \"iso.ies\"\nflux = 10000\n"
+                                         "[lighting]\ngrid = 0.5\nrays_per_watt = 4000\nresidual = 0.001\n";
+    ASSERT_TRUE(compile_to_file((dir_ / "cube.toml").string(), (dir_ / "cube.walk").string(), true));
+    bundle_ = model::Bundle::open((dir_ / "cube.walk").string()).release();
+  }
+  static void TearDownTestSuite() {
+    delete bundle_;
+    fs::remove_all(dir_);
+  }
+  static inline fs::path dir_;
+  static inline model::Bundle* bundle_ = nullptr;
+};
+
+TEST_F(ProbeTest, TheFixtureKeepsItsShapeInTheBundle) {
+  const auto luminaires = model::load_luminaires(*bundle_);
+  ASSERT_EQ(luminaires.size(), 1u);
+  EXPECT_EQ(luminaires[0].kind, model::LuminaireKind::Photometric);
+  ASSERT_TRUE(luminaires[0].distribution);
+  EXPECT_NEAR(luminaires[0].distribution->candela_at(33, 77), 100.0, 1e-4);
+  EXPECT_NEAR(luminaires[0].power.g * 179.0, kFlux, 1e-3 * kFlux);
+}
+
+TEST_F(ProbeTest, MeanIlluminanceOverTheCubeMatchesCie171) {
+  // Meters at the middles of an 8 x 8 grid on each face, 1 mm off it, facing in.
+  constexpr int kGrid = 8;
+  struct Face {
+    int axis;
+    double at;
+    double facing;
+  };
+  const Face faces[] = {{0, 0, 1}, {0, kSide, -1}, {1, 0, 1}, {1, kSide, -1}, {2, 0, 1}, {2, kSide, -1}};
+  double sum_total = 0.0, sum_direct = 0.0;
+  int count = 0;
+  ProbeOptions o;
+  o.indirect_rays = 1024;
+  for (const auto& f : faces) {
+    for (int i = 0; i < kGrid; ++i) {
+      for (int j = 0; j < kGrid; ++j) {
+        const int u = (f.axis + 1) % 3, v = (f.axis + 2) % 3;
+        o.at = model::Vec3(0.0);
+        o.at[f.axis] = f.at + 1e-3 * f.facing;
+        o.at[u] = (i + 0.5) * kSide / kGrid;
+        o.at[v] = (j + 0.5) * kSide / kGrid;
+        o.normal = model::Vec3(0.0);
+        o.normal[f.axis] = f.facing;
+        const auto r = probe(*bundle_, o);
+        ASSERT_EQ(r.circuits.size(), 1u);
+        EXPECT_LT(r.back_face_fraction, 1e-3);
+        sum_direct += r.circuits[0].direct_lux;
+        sum_total += r.circuits[0].direct_lux + r.circuits[0].indirect_lux;
+        ++count;
+      }
+    }
+  }
+  constexpr double kArea = 6.0 * kSide * kSide;
+  const double direct = sum_direct / count, total = sum_total / count;
+  std::printf(
+      "probe over the CIE 171 cube: direct %.2f lx (flux / S %.2f), total %.2f lx (closed form %.2f)\n",
+      direct, kFlux / kArea, total, kFlux / (kArea * (1.0 - kRho)));
+  // The 8 x 8 midpoint rule over each face's smooth direct light is good to about 0.5 %.
+  EXPECT_NEAR(direct, kFlux / kArea, 0.01 * kFlux / kArea);
+  EXPECT_NEAR(total, kFlux / (kArea * (1.0 - kRho)), 0.02 * kFlux / (kArea * (1.0 - kRho)));
+}
+
+TEST_F(ProbeTest, AMeterBehindAWallSaysSoAndALookReadsLuminance) {
+  ProbeOptions o;
+  o.at = {2, 2, -0.5};  // under the floor, facing up into its back
+  o.indirect_rays = 256;
+  const auto under = probe(*bundle_, o);
+  EXPECT_GT(under.back_face_fraction, 0.9);      // the rest pass beside the floor, nearly level
+  EXPECT_EQ(under.circuits[0].direct_lux, 0.0);  // the floor shadows the fixture
+  o.at = {2, 2, 2.5};
+  o.look = model::Vec3(1, 0, 0);
+  const auto looking = probe(*bundle_, o);
+  ASSERT_TRUE(looking.look_distance);
+  EXPECT_NEAR(*looking.look_distance, 2.0, 1e-6);
+  // The wall's middle: direct I / r^2 (10,000 / 4 pi lm/sr over 4 m2, r = 2.06 m, cos 0.97) plus about
+  // flux rho / (S (1 - rho)) of interreflection, times rho / pi: well inside [20, 80] cd/m2.
+  EXPECT_GT(looking.circuits[0].look_luminance, 20.0);
+  EXPECT_LT(looking.circuits[0].look_luminance, 80.0);
+}
+
+}  // namespace
+}  // namespace walk::compiler
