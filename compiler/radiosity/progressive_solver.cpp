@@ -92,7 +92,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   const auto caster = make_ray_caster(options.caster, triangles);
 
   std::vector<double> unshot(P * K, 0.0);
+  std::vector<std::uint64_t> patch_hits(P, 0);
+  std::vector<double> emitted_exitance(P, 0.0);  // scalar
   for (const auto& e : area) {
+    emitted_exitance[e.patch] += (e.exitance.r + e.exitance.g + e.exitance.b) / 3.0;
     const auto& p = set.patches[e.patch];
     for (int c = 0; c < 3; ++c) {
       result.radiosity[e.patch * K + e.circuit * 3 + c] += e.exitance[c];
@@ -168,6 +171,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
         continue;
       }
       const Patch& p = set.patches[static_cast<std::size_t>(h)];
+      ++patch_hits[static_cast<std::size_t>(h)];
       double* b = &result.radiosity[std::size_t(h) * K];
       double* u = &unshot[std::size_t(h) * K];
       for (std::size_t k = 0; k < K; ++k) {
@@ -242,6 +246,16 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     progress.advance();
     if (observer) observer(result);
   }
+  double variance = 0.0, square = 0.0;
+  for (std::size_t i = 0; i < P; ++i) {
+    const double a = set.patches[i].area;
+    // Scalar radiosity (the mean over channels of the sum over circuits, as scalar_power sums power) less
+    // the emitters' own exitance: a panel's glow is exact and would swamp the light on the surfaces.
+    const double reflected = std::max(0.0, scalar_power(&result.radiosity[i * K], K) - emitted_exitance[i]);
+    square += a * reflected * reflected;
+    if (patch_hits[i] > 0) variance += a * reflected * reflected / double(patch_hits[i]);
+  }
+  stats.estimated_error = square > 0.0 ? std::sqrt(variance / square) : 0.0;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

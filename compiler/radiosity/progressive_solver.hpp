@@ -62,6 +62,11 @@ struct RadiosityStats {
   double back_face = 0.0;  // rays that hit the back of a one-sided surface (inside a wall): absorbed there
   double unshot = 0.0;
   double seconds = 0.0;
+  // The solver's own estimate of its error: every ray carries the same power, so the light a patch
+  // reflects is its ray hits h times that power, off by about 1/sqrt(h) (Poisson). Area-weighted RMS of
+  // those errors over the area-weighted RMS reflected radiosity: sqrt(sum A B_r^2 / h / sum A B_r^2), B_r
+  // the reflected part of B (emission is exact), scalar over circuits and channels.
+  double estimated_error = 0.0;
 };
 
 struct RadiosityResult {

@@ -75,6 +75,11 @@ model::Vec3 unit_vector(const TomlTable& t, const std::string& key, model::Vec3 
   return glm::normalize(v);
 }
 
+// The solver's estimate is a Poisson error over ray hits: below 0.1 % the rays needed pass any budget, and
+// above 50 % the light is noise.
+constexpr double kMinTargetError = 0.001;
+constexpr double kMaxTargetError = 0.5;
+
 // |cos| between a fixture's aim and its C0 direction beyond which C0 is undefined (about 2.6 degrees).
 constexpr double kAlongAim = 0.999;
 
@@ -353,7 +358,7 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("lighting");
   if (!t) return;
   t->only({"method", "grid", "samples_per_luminaire", "rays_per_watt", "residual", "ambient", "exposure",
-           "white_luminance", "ray_caster"});
+           "white_luminance", "ray_caster", "target_error"});
   auto& l = cfg.lighting;
   if (const auto m = t->string("method")) {
     if (*m == "radiosity")
@@ -370,6 +375,11 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
     l.samples_per_luminaire = static_cast<int>(*s);
   }
   l.rays_per_watt = positive(*t, "rays_per_watt", l.rays_per_watt);
+  if (t->has("target_error")) {
+    if (t->has("rays_per_watt"))
+      t->fail("target_error", "give `target_error` or the expert override `rays_per_watt`, not both");
+    l.target_error = t->number("target_error", 0.0, kMinTargetError, kMaxTargetError);
+  }
   l.residual = positive(*t, "residual", l.residual);
   if (l.residual >= 1.0) t->fail("residual", "must be below 1 (a fraction of the emitted power)");
   l.ambient = t->number("ambient").value_or(l.ambient);

@@ -46,13 +46,14 @@ enum class LightingMethod { Radiosity, Direct };
 struct LightingConfig {
   LightingMethod method = LightingMethod::Radiosity;
   double grid = 0.5;  // metres: patch edge length (the paper's 21 square-inch patches are about 0.12 m)
-  int samples_per_luminaire = 8;     // direct method: jittered points per area luminaire
-  double rays_per_watt = 1000.0;     // radiosity: rays shot per watt of unshot power (accuracy knob)
-  double residual = 0.01;            // radiosity: stop when unshot power < residual * emitted
-  std::string ray_caster = "axial";  // radiosity: "axial" (the paper's structure), "bvh", "embree-exact"
-                                     // or "embree" if built (ray_caster.hpp)
-  double ambient = 0.02;             // W/m2 per unit albedo added at display time for light not simulated
-  std::optional<double> exposure;    // W/m2 shown as white; automatic when absent
+  int samples_per_luminaire = 8;       // direct method: jittered points per area luminaire
+  double rays_per_watt = 1000.0;       // radiosity: rays shot per watt of unshot power (expert override)
+  std::optional<double> target_error;  // radiosity: the solver's estimated error to reach; sets the rays
+  double residual = 0.01;              // radiosity: stop when unshot power < residual * emitted
+  std::string ray_caster = "axial";    // radiosity: "axial" (the paper's structure), "bvh", "embree-exact"
+                                       // or "embree" if built (ray_caster.hpp)
+  double ambient = 0.02;               // W/m2 per unit albedo added at display time for light not simulated
+  std::optional<double> exposure;      // W/m2 shown as white; automatic when absent
 };
 
 // Where a walk through the scene begins: a point on a floor (world metres) and the direction faced.

@@ -45,7 +45,8 @@ void check_patch_budget(const model::Model& model, const SceneConfig& config, st
 }
 
 void check_ray_budget(const model::Model& model, const SceneConfig& config) {
-  if (config.lighting.method != LightingMethod::Radiosity) return;
+  // With a target the light stage chooses the rays itself, within kMaxFirstRoundRays.
+  if (config.lighting.method != LightingMethod::Radiosity || config.lighting.target_error) return;
   double watts = 0.0;
   for (const auto& l : model.luminaires) watts += (l.power.r + l.power.g + l.power.b) / 3.0;
   const double rays = config.lighting.rays_per_watt * watts;

@@ -3,6 +3,7 @@
 // that changed nothing the solve reads (only exposure, ambient or visibility knobs, say) keeps the previous
 // bundle's solution.
 #include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
 
 #include <cstddef>
 #include <numbers>
@@ -10,10 +11,20 @@
 #include "common/hash.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
+#include "compiler/scene/work_budget.hpp"
 #include "compiler/stages/stages.hpp"
 
 namespace walk::compiler {
 namespace {
+
+// Rays of a target's pilot solve's first round: enough hits for a stable estimate on any shipped scene,
+// a few percent of a real solve's rays.
+constexpr double kPilotRays = 2e5;
+// The estimate falls a little slower than 1/sqrt(rays) (emitted light has no noise, and rarely hit patches
+// join the sum as rays grow): 20 % more rays than the square law asks.
+constexpr double kTargetMargin = 1.2;
+// A solve whose estimate is within this factor of the target is kept; beyond it one more solve is run.
+constexpr double kTargetSlack = 1.15;
 
 template <typename T>
 std::uint64_t hash_vector(std::uint64_t h, const std::vector<T>& v) {
@@ -35,8 +46,13 @@ class LightStage final : public Stage {
     for (const auto& p : out.polygons)
       h = hash_bytes(h, &p, offsetof(model::PolygonRecord, name));  // not the name
     for (const auto& r : out.luminaires) h = hash_bytes(h, &r, offsetof(model::LuminaireRecord, name));
-    const double knobs[] = {double(l.method), l.grid,     double(l.samples_per_luminaire),
-                            l.rays_per_watt,  l.residual, double(s.model.circuits.size())};
+    const double knobs[] = {double(l.method),
+                            l.grid,
+                            double(l.samples_per_luminaire),
+                            l.rays_per_watt,
+                            l.residual,
+                            double(s.model.circuits.size()),
+                            l.target_error.value_or(0.0)};
     h = hash_bytes(h, knobs, sizeof knobs);
     for (const auto& lum : s.model.luminaires) {  // what the bundle's records leave out
       const double shape[] = {double(lum.kind), lum.cone,       lum.exponent,
@@ -92,17 +108,52 @@ class LightStage final : public Stage {
     ro.residual = s.config.lighting.residual;
     ro.threads = s.options.threads;
     ro.caster = s.config.lighting.ray_caster;
-    const RadiosityResult r = solve_radiosity(s.patches, emitters, points, circuits, ro);
+    std::string how = fmt::format("{:g} rays/W", ro.rays_per_watt);
+    const RadiosityResult r =
+        s.config.lighting.target_error
+            ? solve_to_target(s, emitters, points, circuits, ro, *s.config.lighting.target_error, how)
+            : solve_radiosity(s.patches, emitters, points, circuits, ro);
     out.light = vertex_radiosity(s.patches, r);
     out.polygon_light = polygon_radiosity(s.patches, r, out.polygons.size());
     const auto& st = r.stats;
     return StageOutcome::ran(
         s.patches.patches.size(), st.rays,
-        fmt::format("radiosity: {} patches, {} circuits, {} rays in {} shots / {} rounds, {:.2f} Mrays/s, "
-                    "residual {:.2f}%, absorbed {:.1f} W escaped {:.1f} W of {:.1f} W",
-                    s.patches.patches.size(), circuits, st.rays, st.shots, st.rounds,
-                    st.rays / st.seconds * 1e-6, 100.0 * st.unshot / st.emitted, st.absorbed, st.escaped,
-                    st.emitted));
+        fmt::format(
+            "radiosity: {}, estimated error {:.2f}%; {} patches, {} circuits, {} rays in {} shots / {} "
+            "rounds, {:.2f} Mrays/s, residual {:.2f}%, absorbed {:.1f} W escaped {:.1f} W of {:.1f} W",
+            how, 100.0 * st.estimated_error, s.patches.patches.size(), circuits, st.rays, st.shots, st.rounds,
+            st.rays / st.seconds * 1e-6, 100.0 * st.unshot / st.emitted, st.absorbed, st.escaped,
+            st.emitted));
+  }
+
+  // Accuracy by target: a pilot solve small enough to cost little measures the error estimate, which falls
+  // as 1/sqrt(rays), and the real solve takes the rays that bring it to the target (once more if it falls
+  // short by more than kTargetSlack). `how` says what was done, for the stage report.
+  static RadiosityResult solve_to_target(const CompileState& s, std::span<const AreaEmitter> area,
+                                         std::span<const PointEmitter> points, std::size_t circuits,
+                                         RadiosityOptions ro, double target, std::string& how) {
+    double watts = 0.0;
+    for (const auto& l : s.model.luminaires) watts += (l.power.r + l.power.g + l.power.b) / 3.0;
+    const double most = kMaxFirstRoundRays / std::max(watts, 1e-12);
+    ro.rays_per_watt = std::min(most, kPilotRays / std::max(watts, 1e-12));
+    RadiosityResult r = solve_radiosity(s.patches, area, points, circuits, ro);
+    how = fmt::format("target {:.2f}%: pilot {:.3g} rays/W estimated {:.2f}%", 100.0 * target,
+                      ro.rays_per_watt, 100.0 * r.stats.estimated_error);
+    for (int pass = 0; pass < 2 && r.stats.estimated_error > target * (pass == 0 ? 1.0 : kTargetSlack);
+         ++pass) {
+      if (ro.rays_per_watt >= most) {
+        spdlog::warn(
+            "{}: [lighting] target_error = {:g} needs more than the {:.0e} first-round rays a compile may "
+            "cast; the light is left at an estimated {:.2f}%",
+            s.config.path, target, kMaxFirstRoundRays, 100.0 * r.stats.estimated_error);
+        break;
+      }
+      const double ratio = r.stats.estimated_error / target;
+      ro.rays_per_watt = std::min(most, ro.rays_per_watt * ratio * ratio * kTargetMargin);
+      r = solve_radiosity(s.patches, area, points, circuits, ro);
+      how += fmt::format(" -> {:.3g} rays/W", ro.rays_per_watt);
+    }
+    return r;
   }
 
   static StageOutcome direct(CompileState& s) {

@@ -3,6 +3,7 @@
 // E = flux / (S (1 - rho)); a meter inside a wall says so; a look ray reads luminance B / pi.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -36,8 +37,9 @@ class ProbeTest : public ::testing::Test {
                                          "[materials.grey]\nreflectance = [0.5, 0.5, 0.5]\n"
                                          "[[luminaires.fixture]]\nname = \"centre\"\nposition = [2, 2, 2]\n"
                                          "photometry = \"iso.ies\"\nflux = 10000\n"
-                                         "[lighting]\ngrid = 0.5\nrays_per_watt = 4000\nresidual = 0.001\n";
-    ASSERT_TRUE(compile_to_file((dir_ / "cube.toml").string(), (dir_ / "cube.walk").string(), true));
+                                         "[lighting]\ngrid = 0.5\ntarget_error = 0.03\nresidual = 0.001\n";
+    ASSERT_TRUE(
+        compile_to_file((dir_ / "cube.toml").string(), (dir_ / "cube.walk").string(), true, &stages_));
     bundle_ = model::Bundle::open((dir_ / "cube.walk").string()).release();
   }
   static void TearDownTestSuite() {
@@ -45,8 +47,21 @@ class ProbeTest : public ::testing::Test {
     fs::remove_all(dir_);
   }
   static inline fs::path dir_;
+  static inline std::vector<StageReport> stages_;
   static inline model::Bundle* bundle_ = nullptr;
 };
+
+TEST_F(ProbeTest, TheLightStageMeetsItsTargetError) {
+  const auto light =
+      std::find_if(stages_.begin(), stages_.end(), [](const auto& s) { return s.name == "light"; });
+  ASSERT_NE(light, stages_.end());
+  const auto at = light->detail.find("estimated error ");
+  ASSERT_NE(at, std::string::npos) << light->detail;
+  const double estimate = std::stod(light->detail.substr(at + 16)) / 100.0;
+  EXPECT_LE(estimate, 0.03 * 1.15) << light->detail;  // within the stage's slack of the target
+  EXPECT_GT(estimate, 0.03 * 0.5) << light->detail;   // and not far more rays than it asked for
+  EXPECT_NE(light->detail.find("target 3.00%: pilot"), std::string::npos) << light->detail;
+}
 
 TEST_F(ProbeTest, TheFixtureKeepsItsShapeInTheBundle) {
   const auto luminaires = model::load_luminaires(*bundle_);

@@ -330,3 +330,71 @@ TEST(Radiosity, SameResultForOneAndTwoThreads) {
 
 }  // namespace
 }  // namespace walk::compiler
+
+namespace walk::compiler {
+namespace {
+
+// The area-weighted relative RMS difference of two solutions' scalar radiosity, as estimated_error defines it
+// (patches in `emitting` left out: their own glow is exact).
+double relative_rms(const PatchSet& set, const RadiosityResult& a, const RadiosityResult& ref,
+                    const std::vector<AreaEmitter>& emitting) {
+  std::vector<bool> skip(set.patches.size(), false);
+  for (const auto& e : emitting) skip[e.patch] = true;
+  double diff = 0.0, square = 0.0;
+  const std::size_t k = ref.circuits * 3;
+  for (std::size_t i = 0; i < set.patches.size(); ++i) {
+    double x = 0.0, y = 0.0;
+    for (std::size_t j = 0; j < k; ++j) {
+      x += a.radiosity[i * k + j] / 3.0;
+      y += ref.radiosity[i * k + j] / 3.0;
+    }
+    if (skip[i]) continue;
+    diff += set.patches[i].area * (x - y) * (x - y);
+    square += set.patches[i].area * y * y;
+  }
+  return std::sqrt(diff / square);
+}
+
+TEST(Radiosity, ErrorEstimateTracksTheMeasuredError) {
+  // A 4 x 3 x 2.5 m room (rho 0.6, 0.25 m patches) lit by a spot and a ceiling panel on two circuits; the
+  // estimate at each ray count against the error measured from a solve with 64 times the rays (whose own
+  // error, an eighth as large, is taken out in quadrature).
+  PatchSet set;
+  add_box(set, Vec3(0), Vec3(4, 3, 2.5), 0.6, 0.25);
+  std::vector<AreaEmitter> panel;
+  for (std::uint32_t i = 0; i < set.patches.size(); ++i) {
+    const auto& p = set.patches[i];
+    const Vec3 c = (set.vertices[p.v[0]] + set.vertices[p.v[1]] + set.vertices[p.v[2]]) / 3.0;
+    if (p.normal.z < -0.5 && std::abs(c.x - 1.0) < 0.3 && std::abs(c.y - 1.5) < 0.3)
+      panel.push_back({i, 0, model::Rgb(100.0)});
+  }
+  ASSERT_FALSE(panel.empty());
+  PointEmitter spot;
+  spot.position = {3, 1.5, 2.4};
+  spot.cone = 0.6;
+  spot.exponent = 2.0;
+  spot.power = model::Rgb(30.0);
+  spot.circuit = 1;
+  RadiosityOptions o;
+  o.residual = 1e-3;
+  auto solve = [&](double rays_per_watt) {
+    o.rays_per_watt = rays_per_watt;
+    return solve_radiosity(set, panel, std::span<const PointEmitter>(&spot, 1), 2, o);
+  };
+  const auto reference = solve(64 * 400.0);
+  double previous = 1.0;
+  for (const double rays_per_watt : {50.0, 400.0}) {
+    const auto r = solve(rays_per_watt);
+    const double measured = std::sqrt(std::max(0.0, std::pow(relative_rms(set, r, reference, panel), 2) -
+                                                        std::pow(reference.stats.estimated_error, 2)));
+    std::printf("rays/W %.0f: estimated error %.2f %%, measured %.2f %%\n", rays_per_watt,
+                100.0 * r.stats.estimated_error, 100.0 * measured);
+    EXPECT_GT(r.stats.estimated_error, 0.6 * measured) << rays_per_watt;
+    EXPECT_LT(r.stats.estimated_error, 1.6 * measured) << rays_per_watt;
+    EXPECT_LT(r.stats.estimated_error, previous);  // more rays, smaller estimate
+    previous = r.stats.estimated_error;
+  }
+}
+
+}  // namespace
+}  // namespace walk::compiler

@@ -318,6 +318,11 @@ TEST_F(PhotometricSceneTest, BadPhotometricKeysNameTheKeyAndTheFile) {
   const std::string bad = error_of(head + "[[luminaires.fixture]]\nposition = [0, 0, 3]\nphotometry = \"" +
                                    fs::path(ies_).filename().string() + "\"\n");
   EXPECT_NE(bad.find(":7: 'lots' where a candela value should be"), std::string::npos) << bad;
+  const std::string target = error_of(head + "[lighting]\nrays_per_watt = 10\ntarget_error = 0.05\n");
+  EXPECT_NE(target.find("lighting.target_error"), std::string::npos) << target;
+  EXPECT_NE(target.find("not both"), std::string::npos) << target;
+  const std::string tiny = error_of(head + "[lighting]\ntarget_error = 0.00001\n");
+  EXPECT_NE(tiny.find("must be between 0.001 and 0.5"), std::string::npos) << tiny;
   const std::string exposure = error_of(head + "[lighting]\nexposure = 1\nwhite_luminance = 100\n");
   EXPECT_NE(exposure.find("lighting.white_luminance"), std::string::npos) << exposure;
   const std::string c0 = error_of(head +
