@@ -19,5 +19,6 @@ void add_bench_radiosity_command(CLI::App& bench, int& exit_code);
 void add_bench_rays_command(CLI::App& bench, int& exit_code);
 void add_bench_render_command(CLI::App& bench, int& exit_code);
 void add_bench_cells_command(CLI::App& bench, int& exit_code);
+void add_bench_lighting_command(CLI::App& bench, int& exit_code);
 
 }  // namespace walk::tools

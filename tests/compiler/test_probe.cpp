@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 
+#include "compiler/lighting/path_reference.hpp"
 #include "compiler/lighting/probe.hpp"
 #include "compiler/pipeline.hpp"
 #include "model/bundle.hpp"
@@ -130,6 +132,30 @@ TEST_F(ProbeTest, AMeterBehindAWallSaysSoAndALookReadsLuminance) {
   // flux rho / (S (1 - rho)) of interreflection, times rho / pi: well inside [20, 80] cd/m2.
   EXPECT_GT(looking.circuits[0].look_luminance, 20.0);
   EXPECT_LT(looking.circuits[0].look_luminance, 80.0);
+}
+
+TEST_F(ProbeTest, PathTracedReferenceAndDisplayedLightMatchTheClosedForm) {
+  // The reference shares no code with the solver: over points spread by area, the mean radiosity is
+  // rho E = rho flux / (S (1 - rho)), in W/m2 (the fixture's watts: 10,000 lm at 179 lm/W).
+  const auto points = surface_points(*bundle_, 300);
+  ASSERT_EQ(points.size(), 300u);
+  const PathTracer tracer(*bundle_);
+  const auto reference = tracer.trace(points, 256, 7, 2);
+  double traced = 0.0, shown = 0.0, error2 = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    traced += reference.radiosity[i].g;
+    shown += displayed_radiosity(*bundle_, points[i]).g;
+    error2 += reference.standard_error[i] * reference.standard_error[i];
+  }
+  traced /= points.size();
+  shown /= points.size();
+  const double expected = kRho * kFlux / 179.0 / (6.0 * kSide * kSide * (1.0 - kRho));
+  std::printf("CIE cube mean radiosity: traced %.4f (+- %.4f), shown %.4f, closed form %.4f W/m2\n", traced,
+              std::sqrt(error2) / points.size(), shown, expected);
+  // 300 points by area sample the faces' smooth light to about 1 %; the trace's own noise is smaller.
+  EXPECT_NEAR(traced, expected, 0.03 * expected);
+  EXPECT_NEAR(shown, expected, 0.03 * expected);
+  EXPECT_GT(reference.rays, 300u * 256u);
 }
 
 }  // namespace

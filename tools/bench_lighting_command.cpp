@@ -1,0 +1,154 @@
+// walk bench lighting: what light accuracy costs in time, against a reference that shares no code with the
+// solver. For each scene, the light stage is run at a range of `target_error`s; the light the display shows
+// at fixed surface points is compared with a converged path-traced reference (compiler/lighting/
+// path_reference.hpp), and the reference itself is timed at a range of paths per point: the two ways of
+// buying accuracy side by side, as CSV and a log-log plot of error against seconds.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "compiler/lighting/path_reference.hpp"
+#include "compiler/pipeline.hpp"
+#include "model/bundle.hpp"
+#include "model/error.hpp"
+#include "tools/commands.hpp"
+#include "tools/gnuplot.hpp"
+
+namespace walk::tools {
+namespace {
+
+namespace fs = std::filesystem;
+
+double luminance(const model::Rgb& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+struct Args {
+  std::vector<std::string> scenes{std::string(WALK_SOURCE_DIR) + "/config/scenes/cornell-box-obj.toml",
+                                  std::string(WALK_SOURCE_DIR) + "/config/scenes/house.toml"};
+  std::vector<double> targets{0.2, 0.1, 0.05, 0.02};
+  std::vector<int> paths{4, 16, 64, 256};
+  int points = 200;
+  int reference_paths = 4096;
+  unsigned threads = 2;
+  std::string plot;
+};
+
+// Relative RMS error of `values` (luminance) against the reference, the reference's own noise taken out in
+// quadrature; also that noise, relative to the same scale, and the ratio of the means (a bias, not noise).
+struct Error {
+  double measured = 0.0, reference_noise = 0.0, mean_ratio = 0.0;
+};
+Error error_against(const std::vector<double>& values, const compiler::PathReference& ref) {
+  double diff = 0.0, scale = 0.0, noise = 0.0, sum = 0.0, sum_ref = 0.0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double r = luminance(ref.radiosity[i]);
+    sum += values[i];
+    sum_ref += r;
+    diff += (values[i] - r) * (values[i] - r);
+    scale += r * r;
+    noise += ref.standard_error[i] * ref.standard_error[i];
+  }
+  if (scale <= 0.0) return {};
+  return {std::sqrt(std::max(0.0, diff - noise) / scale), std::sqrt(noise / scale), sum / sum_ref};
+}
+
+int run(const Args& a) {
+  const fs::path tmp = fs::temp_directory_path() / ("walk_bench_lighting_" + std::to_string(::getpid()));
+  fs::create_directories(tmp);
+  std::ostringstream csv;
+  csv << "scene,method,setting,rays,seconds,estimated_error,error_vs_reference,reference_noise,mean_ratio\n";
+  std::printf("%s", csv.str().c_str());
+  auto row = [&](const std::string& scene, const char* method, double setting, std::uint64_t rays,
+                 double seconds, double estimated, const Error& e) {
+    char line[512];
+    std::snprintf(line, sizeof line, "%s,%s,%g,%llu,%.4f,%.5f,%.5f,%.5f,%.4f\n", scene.c_str(), method,
+                  setting, static_cast<unsigned long long>(rays), seconds, estimated, e.measured,
+                  e.reference_noise, e.mean_ratio);
+    csv << line;
+    std::printf("%s", line);
+    std::fflush(stdout);
+  };
+  for (const auto& scene_path : a.scenes) {
+    const std::string scene = fs::path(scene_path).stem().string();
+    compiler::SceneConfig config = compiler::load_scene_config(scene_path);
+    std::vector<compiler::SurfacePoint> points;
+    std::unique_ptr<compiler::PathReference> reference;
+    for (const double target : a.targets) {
+      config.lighting.target_error = target;
+      const auto compiled = compiler::compile_scene(config, {a.threads});
+      const std::string path = (tmp / (scene + ".walk")).string();
+      model::write_bundle(path, compiled.bundle);
+      const auto bundle = model::Bundle::open(path);
+      if (!reference) {  // the geometry is the same at every target: one reference serves them all
+        points = compiler::surface_points(*bundle, a.points);
+        const compiler::PathTracer tracer(*bundle);
+        reference =
+            std::make_unique<compiler::PathReference>(tracer.trace(points, a.reference_paths, 1, a.threads));
+        for (const int paths : a.paths) {
+          const auto r = tracer.trace(points, paths, 2 + paths, a.threads);
+          std::vector<double> values;
+          for (const auto& v : r.radiosity) values.push_back(luminance(v));
+          row(scene, "reference", paths, r.rays, r.seconds, 0.0, error_against(values, *reference));
+        }
+      }
+      double seconds = 0.0, estimated = 0.0;
+      std::uint64_t rays = 0;
+      for (const auto& s : compiled.stages) {
+        if (s.name != "light") continue;
+        seconds = s.seconds;
+        rays = s.items_out;
+        const auto at = s.detail.find("estimated error ");
+        if (at != std::string::npos) estimated = std::stod(s.detail.substr(at + 16)) / 100.0;
+      }
+      std::vector<double> values;
+      for (const auto& p : points) values.push_back(luminance(compiler::displayed_radiosity(*bundle, p)));
+      row(scene, "walk", target, rays, seconds, estimated, error_against(values, *reference));
+    }
+  }
+  fs::remove_all(tmp);
+  if (!a.plot.empty()) {
+    std::ostringstream commands;
+    commands << "set logscale xy\nset key outside\nset xlabel 'seconds (light stage; reference tracing)'\n"
+             << "set ylabel 'relative RMS error against the converged reference'\n"
+             << "set title 'Light accuracy against time (walk bench lighting)'\nplot ";
+    bool first = true;
+    for (const auto& scene_path : a.scenes) {
+      const std::string scene = fs::path(scene_path).stem().string();
+      for (const char* method : {"walk", "reference"}) {
+        commands << (first ? "" : ", ") << "'" << plot_data_path(a.plot) << "' using ((strcol(1) eq '"
+                 << scene << "' && strcol(2) eq '" << method << "') ? $5 : 1/0):7 with linespoints title '"
+                 << scene << " " << method << "'";
+        first = false;
+      }
+    }
+    commands << "\n";
+    plot_with_gnuplot(a.plot, csv.str(), commands.str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_bench_lighting_command(CLI::App& bench, int& exit_code) {
+  auto args = std::make_shared<Args>();
+  auto* cmd = bench.add_subcommand(
+      "lighting",
+      "Light error against a path-traced reference, by target_error and by reference paths (CSV)");
+  cmd->add_option("--scenes", args->scenes, "Scene configs (default: the Cornell box and the house)")
+      ->delimiter(',');
+  cmd->add_option("--targets", args->targets, "target_error values to compile at")->delimiter(',');
+  cmd->add_option("--paths", args->paths, "Reference paths per point to time")->delimiter(',');
+  cmd->add_option("--points", args->points, "Surface points compared")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--reference-paths", args->reference_paths, "Paths per point of the converged reference")
+      ->check(CLI::Range(1, 100000000));
+  cmd->add_option("-j,--threads", args->threads, "Worker threads");
+  cmd->add_option("--plot", args->plot, "Also write this PNG (and its CSV beside it) with gnuplot");
+  cmd->callback([args, &exit_code] { exit_code = run(*args); });
+}
+
+}  // namespace walk::tools
