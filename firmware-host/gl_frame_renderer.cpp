@@ -3,8 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <numbers>
+#include <optional>
 
 #include "firmware-host/frame_renderer.hpp"
+#include "model/photometric_units.hpp"
 #include "render/backend/backend.hpp"
 
 namespace walk::kiosk {
@@ -26,6 +29,10 @@ class Output {
       : bundle_(bundle),
         refine_(display.refine),
         target_hz_(display.target_hz * views_in_frame),
+        white_radiosity_(display.white_luminance
+                             ? std::optional<float>(
+                                   float(*display.white_luminance* std::numbers::pi / model::kLumensPerWatt))
+                             : std::nullopt),
         frame_timing_(render::parse_frame_timing(display.frame_timing).value_or(render::FrameTiming::Auto)) {
     render::BackendOptions options;
     options.kind = render::parse_backend_kind(display.backend);
@@ -150,6 +157,7 @@ class Output {
       // Every view's share of the frame: each governor holds (views in the whole frame) x the frame rate.
       r.set_target_rate(target_hz_ * double(views));
       r.set_frame_timing(frame_timing_);
+      r.set_exposure(white_radiosity_);
       if (!levels_.empty()) r.set_dimmers(levels_);
     }
   }
@@ -158,6 +166,7 @@ class Output {
   bool refine_;
   double target_hz_;  // the frame rate times the views drawn on the other outputs
   render::FrameTiming frame_timing_;
+  std::optional<float> white_radiosity_;  // [display] white_luminance as radiosity (W/m2); none: the bundle's
   bool quad_requested_ = false, quad_buffer_ = false, drew_ = false;
   std::unique_ptr<render::Backend> backend_;
   std::vector<std::unique_ptr<render::Renderer>> renderers_;

@@ -29,6 +29,9 @@ std::string resolve(const std::string& base_dir, const std::string& p) {
 constexpr double kCornerTolerance = 0.01;
 // The nominal eye must be at least this far in front of the screen (metres), or the view is degenerate.
 constexpr double kMinEyeToScreen = 0.05;
+// [display] white_luminance, cd/m2: from a dim night scene to daylit interiors.
+constexpr double kMinWhiteLuminance = 1.0;
+constexpr double kMaxWhiteLuminance = 100000.0;
 
 glm::dvec3 point(const TomlTable& s, const std::string& key) {
   const toml::node* n = s.raw().get(key);
@@ -129,7 +132,7 @@ KioskConfig load_kiosk_config(const std::string& path) {
   if (auto s = top.table("display")) {
     s->only({"mode", "screen", "screens", "outputs", "stereo", "eye_separation", "nominal_eye",
              "tracking_ease", "backend", "width", "height", "fullscreen", "monitor", "drm_device",
-             "fov_y_deg", "refine", "target_hz", "frame_timing"});
+             "fov_y_deg", "refine", "target_hz", "frame_timing", "white_luminance"});
     c.display.mode = s->string("mode").value_or(c.display.mode);
     if (c.display.mode != "screen" && c.display.mode != "hmd")
       s->fail("mode",
@@ -171,6 +174,8 @@ KioskConfig load_kiosk_config(const std::string& path) {
     c.display.drm_device = s->string("drm_device").value_or(c.display.drm_device);
     c.display.refine = s->boolean("refine", c.display.refine);
     c.display.target_hz = s->number("target_hz", c.display.target_hz, 1.0, 480.0);
+    if (s->has("white_luminance"))
+      c.display.white_luminance = s->number("white_luminance", 100.0, kMinWhiteLuminance, kMaxWhiteLuminance);
     c.display.frame_timing = s->string("frame_timing").value_or(c.display.frame_timing);
     if (!render::parse_frame_timing(c.display.frame_timing))
       s->fail("frame_timing", "unknown frame timing '" + c.display.frame_timing + "' (" +

@@ -47,6 +47,8 @@ struct DisplayConfig {
   // How the governor times frames: auto (GL timer queries on hardware GPUs, glFinish on software
   // rasterizers), finish or queries (render/gpu_timer.hpp).
   std::string frame_timing = "auto";
+  // A white diffuse surface this bright (cd/m2) is shown as white, instead of the bundle's exposure.
+  std::optional<double> white_luminance;
 };
 
 struct StartConfig {

@@ -100,6 +100,12 @@ struct Renderer::Impl {
   std::vector<float> polygon_mixed_levels{-1.0f};  // levels of the mix in polygon_buffer; -1: none yet
   void update_polygon_mix();
   std::vector<float> levels;
+  std::optional<float> exposure_override;  // set_exposure: radiosity shown as white, instead of META's
+  // Radiosity (W/m2) shown as white: the kiosk's override, else the bundle's, else 1.
+  float exposure() const {
+    const float e = exposure_override.value_or(bundle.meta().exposure);
+    return e > 0.0f ? e : 1.0f;
+  }
   DrawList list;  // this frame's
   bool culling = true;
   float glass_opacity = 0.25f;
@@ -458,6 +464,12 @@ void Renderer::set_dimmers(std::span<const float> levels) {
 std::span<const float> Renderer::dimmers() const {
   return impl_->levels;
 }
+void Renderer::set_exposure(std::optional<float> white_radiosity) {
+  if (white_radiosity && !(*white_radiosity > 0.0f && std::isfinite(*white_radiosity)))
+    white_radiosity.reset();
+  if (impl_->exposure_override != white_radiosity) impl_->restart = true;
+  impl_->exposure_override = white_radiosity;
+}
 void Renderer::set_backface_culling(bool enabled) {
   if (impl_->culling != enabled) impl_->restart = true;
   impl_->culling = enabled;
@@ -636,7 +648,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     if (pass.u_levels >= 0 && !r.levels.empty())
       glUniform1fv(pass.u_levels, GLsizei(r.levels.size()), r.levels.data());
     glUniform1f(pass.u_ambient, meta.ambient);
-    glUniform1f(pass.u_inv_exposure, meta.exposure > 0.0f ? 1.0f / meta.exposure : 1.0f);
+    glUniform1f(pass.u_inv_exposure, 1.0f / r.exposure());
     glUniform1f(pass.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));
     glUniform4f(pass.u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
     glActiveTexture(GL_TEXTURE0);
@@ -731,11 +743,10 @@ void Renderer::Impl::make_shaded_program() {
 // Leaves the scene program bound, as the caller had it.
 void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
                                  const glm::mat4& view_projection_matrix) {
-  const float exposure = bundle.meta().exposure;
   glUseProgram(shaded_program->id());
   glUniformMatrix4fv(shaded_program->uniform("u_view_projection"), 1, GL_FALSE,
                      &view_projection_matrix[0][0]);
-  glUniform1f(shaded_program->uniform("u_inv_exposure"), exposure > 0.0f ? 1.0f / exposure : 1.0f);
+  glUniform1f(shaded_program->uniform("u_inv_exposure"), 1.0f / exposure());
   glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
   if (albedo_maps) albedo_maps->bind();
   glBindVertexArray(shaded_vao_id);
@@ -784,7 +795,7 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   f = glm::length(f) > 1e-6f ? glm::normalize(f) : glm::vec2(1, 0);
   const glm::vec2 side_dir(-f.y, f.x), eye(view.eye.x, view.eye.y);
   const float size = 0.06f * half, z = hi.z + 1.0f;
-  const glm::vec3 red(m.exposure > 0.0f ? m.exposure : 1.0f, 0.0f, 0.0f);
+  const glm::vec3 red(exposure(), 0.0f, 0.0f);
   const ShadedVertex arrow[3] = {{glm::vec3(eye + f * size, z), red},
                                  {glm::vec3(eye - f * size * 0.6f + side_dir * size * 0.6f, z), red},
                                  {glm::vec3(eye - f * size * 0.6f - side_dir * size * 0.6f, z), red}};
@@ -837,9 +848,8 @@ void Renderer::Impl::choose_diagonals() {
   std::vector<Quad> opaque;
   for (const Quad& q : quads)
     if (bundle.polygons()[q.polygon].role != std::uint32_t(model::Role::Glass)) opaque.push_back(q);
-  const float exposure = bundle.meta().exposure > 0.0f ? bundle.meta().exposure : 1.0f;
-  const Subdivision sub =
-      subdivide(opaque, vertices, colour, settings.subdivision_error * exposure, settings.subdivision_depth);
+  const Subdivision sub = subdivide(opaque, vertices, colour, settings.subdivision_error * exposure(),
+                                    settings.subdivision_depth);
   // The replaced quads stay in the index buffer, under their sub-quads: where a sub-quad's edge midpoint
   // meets a neighbour that was not split (a T-junction), pixels that fall between the triangles in float
   // show the quad's own Gouraud colour instead of a crack to the background.

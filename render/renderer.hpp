@@ -100,6 +100,9 @@ class Renderer {
   // On by default: each zone's copy of a double wall faces into its own zone. The bundle's PVS assumes it
   // (polygons turned away from a whole cell are left out), so turning it off also draws every polygon.
   void set_backface_culling(bool enabled);
+  // Radiosity (W/m2 per channel) shown as white, instead of the bundle's exposure; std::nullopt (or a value
+  // that is not positive) hands it back to the bundle. The kiosk's [display] white_luminance sets it.
+  void set_exposure(std::optional<float> white_radiosity);
   // Blit each frame to the default framebuffer (a window); off by default. Use Backend::has_window().
   void set_present_to_window(bool enabled);
   // Where in the window a frame goes: its lower-left corner, and for quad-buffered stereo the eye's back

@@ -8,11 +8,11 @@
 
 #include "common/parallel_for.hpp"
 #include "compiler/lighting/direct_light.hpp"
-#include "compiler/photometry/photometric_units.hpp"
 #include "compiler/radiosity/sampling.hpp"
 #include "compiler/raycast/triangle_bvh.hpp"
 #include "model/error.hpp"
 #include "model/luminaire_shapes.hpp"
+#include "model/photometric_units.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -109,7 +109,8 @@ ProbeResult probe(const model::Bundle& b, const ProbeOptions& o) {
   const auto direct =
       direct_light({&meter, 1}, model::load_luminaires(b), circuits, *s.bvh, {o.panel_samples, o.threads});
   for (std::size_t c = 0; c < circuits; ++c)
-    r.circuits[c].direct_lux = lux_from_irradiance({direct[c * 3], direct[c * 3 + 1], direct[c * 3 + 2]});
+    r.circuits[c].direct_lux =
+        model::lux_from_irradiance({direct[c * 3], direct[c * 3 + 1], direct[c * 3 + 2]});
 
   // Indirect: E = mean radiosity met by cosine-distributed rays (pdf cos / pi cancels the cosine and pi).
   const int rays = std::max(1, o.indirect_rays);
@@ -133,7 +134,7 @@ ProbeResult probe(const model::Bundle& b, const ProbeOptions& o) {
       }
       for (std::size_t c = 0; c < circuits; ++c)
         lux[i * circuits + c] =
-            lux_from_irradiance({radiosity[c * 3], radiosity[c * 3 + 1], radiosity[c * 3 + 2]});
+            model::lux_from_irradiance({radiosity[c * 3], radiosity[c * 3 + 1], radiosity[c * 3 + 2]});
     }
   });
   for (std::size_t c = 0; c < circuits; ++c) {
@@ -159,7 +160,7 @@ ProbeResult probe(const model::Bundle& b, const ProbeOptions& o) {
       // A diffuse surface of radiosity B has luminance B / pi.
       for (std::size_t c = 0; c < circuits; ++c)
         r.circuits[c].look_luminance =
-            lux_from_irradiance({radiosity[c * 3], radiosity[c * 3 + 1], radiosity[c * 3 + 2]}) /
+            model::lux_from_irradiance({radiosity[c * 3], radiosity[c * 3 + 1], radiosity[c * 3 + 2]}) /
             std::numbers::pi;
     }
   }

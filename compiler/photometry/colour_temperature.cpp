@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "compiler/photometry/photometric_units.hpp"
+#include "model/photometric_units.hpp"
 
 namespace walk::compiler {
 
@@ -20,7 +20,7 @@ model::Rgb cct_colour(double kelvin) {
   model::Rgb rgb{std::max(0.0, 3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z),
                  std::max(0.0, -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z),
                  std::max(0.0, 0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z)};
-  return rgb / luminance_weight(rgb);
+  return rgb / model::luminance_weight(rgb);
 }
 
 }  // namespace walk::compiler

@@ -11,11 +11,11 @@
 #include <numbers>
 
 #include "compiler/photometry/colour_temperature.hpp"
-#include "compiler/photometry/photometric_units.hpp"
 #include "compiler/photometry/photometry_file.hpp"
 #include "compiler/raycast/ray_caster.hpp"
 #include "compiler/scene/units.hpp"
 #include "model/error.hpp"
+#include "model/photometric_units.hpp"
 #include "model/toml_table.hpp"
 
 namespace walk::compiler {
@@ -62,8 +62,9 @@ model::Rgb light_colour(const TomlTable& t, model::Rgb fallback) {
 double light_power(const TomlTable& t, const model::Rgb& colour, double fallback_watts) {
   if (t.has("power") && t.has("flux")) t.fail("flux", "give `power` (W) or `flux` (lm), not both");
   if (!t.has("flux")) return positive(t, "power", fallback_watts);
-  if (!(luminance_weight(colour) > 0.0)) t.fail("colour", "must not be black when `flux` gives the lumens");
-  return positive(t, "flux", 1.0) / (kLumensPerWatt * luminance_weight(colour));
+  if (!(model::luminance_weight(colour) > 0.0))
+    t.fail("colour", "must not be black when `flux` gives the lumens");
+  return positive(t, "flux", 1.0) / (model::kLumensPerWatt * model::luminance_weight(colour));
 }
 
 // A direction given as [x, y, z]: not zero, returned unit length.
@@ -312,7 +313,7 @@ void read_luminaires(const TomlTable& root, SceneConfig& cfg) {
     const model::Rgb colour = light_colour(t, {1, 1, 1});
     // The file's flux unless the scene gives the lamp's: a table is a shape, `flux` its scale.
     const double lumens = t.has("flux") ? positive(t, "flux", 1.0) : d->lumens;
-    l.power = power_from_lumens(lumens, colour);
+    l.power = model::power_from_lumens(lumens, colour);
     cfg.luminaires.push_back(l);
     cfg.luminaire_circuits.push_back(t.string("circuit").value_or(l.name));
   }
@@ -390,7 +391,7 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   if (t->has("exposure")) l.exposure = positive(*t, "exposure", 1.0);
   // A diffuse surface of radiosity B (W/m2 per channel, white) has luminance 179 B / pi cd/m2.
   if (t->has("white_luminance"))
-    l.exposure = positive(*t, "white_luminance", 1.0) * std::numbers::pi / kLumensPerWatt;
+    l.exposure = positive(*t, "white_luminance", 1.0) * std::numbers::pi / model::kLumensPerWatt;
 }
 
 void read_visibility(const TomlTable& root, SceneConfig& cfg) {

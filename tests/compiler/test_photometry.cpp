@@ -13,9 +13,9 @@
 #include "compiler/photometry/emission.hpp"
 #include "compiler/photometry/eulumdat_reader.hpp"
 #include "compiler/photometry/ies_reader.hpp"
-#include "compiler/photometry/photometric_units.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "model/error.hpp"
+#include "model/photometric_units.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -222,7 +222,7 @@ TEST(Photometry, ColourTemperatureFollowsThePlanckianLocus) {
   double previous_ratio = 1e9;
   for (double k : {2000.0, 2700.0, 3000.0, 4000.0, 5000.0, 6500.0, 10000.0}) {
     const model::Rgb c = cct_colour(k);
-    EXPECT_NEAR(luminance_weight(c), 1.0, 1e-12);
+    EXPECT_NEAR(model::luminance_weight(c), 1.0, 1e-12);
     // Back to xy through the Rec. 709 matrix, against the locus integrated from Planck's law.
     const double X = 0.4124564 * c.r + 0.3575761 * c.g + 0.1804375 * c.b;
     const double Y = 0.2126729 * c.r + 0.7151522 * c.g + 0.0721750 * c.b;
@@ -244,8 +244,8 @@ TEST(Photometry, ColourTemperatureFollowsThePlanckianLocus) {
 
 TEST(Photometry, LumensBecomeWattsThatGiveBackTheLumens) {
   const model::Rgb warm = cct_colour(3000.0);
-  const model::Rgb p = power_from_lumens(1000.0, warm);
-  EXPECT_NEAR(lux_from_irradiance(p), 1000.0, 1e-9);  // the same map, power for irradiance
+  const model::Rgb p = model::power_from_lumens(1000.0, warm);
+  EXPECT_NEAR(model::lux_from_irradiance(p), 1000.0, 1e-9);  // the same map, power for irradiance
 }
 
 // A table brighter towards C0 (+x): I = 100 (1 + 0.8 cos C sin gamma) cos gamma below the horizon (one
@@ -266,7 +266,7 @@ model::Luminaire fixture_at(const Vec3& p, const model::IntensityDistribution& d
   l.normal = {0, 0, -1};
   l.u_axis = {1, 0, 0};
   l.distribution = std::make_shared<const model::IntensityDistribution>(d);
-  l.power = power_from_lumens(d.lumens, model::Rgb(1.0));
+  l.power = model::power_from_lumens(d.lumens, model::Rgb(1.0));
   return l;
 }
 
@@ -282,7 +282,7 @@ TEST(Photometry, GatheredIlluminanceIsTheTableOverDistanceSquared) {
     const double gamma = std::acos(cos_g) / kDeg;
     const double expected = d.candela_at(gamma, c) * cos_g / r2;
     // Radiosity of a white receiver is its irradiance; shadow rays start 0.1 mm up (2e-4 relative).
-    EXPECT_NEAR(lux_from_irradiance(model::Rgb(b[0], b[1], b[2])), expected, 3e-4 * expected) << x;
+    EXPECT_NEAR(model::lux_from_irradiance(model::Rgb(b[0], b[1], b[2])), expected, 3e-4 * expected) << x;
   }
 }
 

@@ -96,6 +96,12 @@ TEST_F(KioskConfigTest, DisplayTakesGbmAndTheRefinementKnobs) {
   EXPECT_FALSE(c.display.refine);
   EXPECT_DOUBLE_EQ(c.display.target_hz, 75.0);
   EXPECT_EQ(c.display.frame_timing, "queries");
+  EXPECT_FALSE(c.display.white_luminance);
+  const auto lit = load_kiosk_config(write(std::string(kMinimal) + "[display]\nwhite_luminance = 150\n"));
+  ASSERT_TRUE(lit.display.white_luminance);
+  EXPECT_DOUBLE_EQ(*lit.display.white_luminance, 150.0);
+  const auto dark = error_of(std::string(kMinimal) + "[display]\nwhite_luminance = 0\n");
+  EXPECT_NE(dark.find("display.white_luminance"), std::string::npos) << dark;
   const auto msg = error_of(std::string(kMinimal) + "[display]\ntarget_hz = 0\n");
   EXPECT_NE(msg.find("display.target_hz"), std::string::npos) << msg;
   const auto timing = error_of(std::string(kMinimal) + "[display]\nframe_timing = \"gpu\"\n");

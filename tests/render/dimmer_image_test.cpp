@@ -106,6 +106,31 @@ TEST_P(DimmerImageTest, DimmerAtHalfHalvesItsRoomsLinearIntensity) {
             << " of the stated tolerance\n";
 }
 
+// The kiosk's white luminance replaces the bundle's exposure: at twice the exposure every pixel shows the
+// same linear light at half the display value (to the 8-bit steps), and handing it back restores the frame.
+TEST_P(DimmerImageTest, ExposureOverrideScalesTheDisplayAndHandsBack) {
+  const TwoRooms scene = separate_circuits();
+  auto bundle = open_two_rooms(scene, "exposure_override");
+  Renderer renderer(*bundle);
+  const Image normal = frame(renderer, {1.0f, 1.0f}, inside_a());
+  const double x = scene.exposure;
+  renderer.set_exposure(float(2.0 * x));
+  const Image dimmer = frame(renderer, {1.0f, 1.0f}, inside_a());
+  int compared = 0;
+  for (std::size_t i = 0; i < normal.rgba.size(); ++i) {
+    if (i % 4 == 3 || normal.rgba[i] >= 255 || normal.rgba[i] < 20) continue;
+    const int b = normal.rgba[i], d = dimmer.rgba[i];
+    const double tolerance =
+        decode(d + 1, 2.0 * x) - decode(d - 1, 2.0 * x) + decode(b + 1, x) - decode(b - 1, x);
+    ASSERT_NEAR(decode(d, 2.0 * x), decode(b, x), tolerance) << "byte " << i;
+    ASSERT_LT(d, b) << "byte " << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, int(normal.rgba.size() / 4));
+  renderer.set_exposure(std::nullopt);
+  EXPECT_EQ(frame(renderer, {1.0f, 1.0f}, inside_a()).rgba, normal.rgba);
+}
+
 // Every pixel's every channel is non-decreasing as one dimmer rises in steps of 0.05, and the ends differ.
 TEST_P(DimmerImageTest, BlendingIsMonotoneBetweenLevels) {
   const TwoRooms scene = separate_circuits();

@@ -4,24 +4,24 @@
 // luminous efficacy Radiance uses (WHTEFFICACY), so a scene's lux agree with a Radiance model of it.
 #include "model/model.hpp"
 
-namespace walk::compiler {
+namespace walk::model {
 
 inline constexpr double kLumensPerWatt = 179.0;
 
 // Luminance weight of a linear Rec. 709 colour: the Y row of its XYZ matrix.
-[[nodiscard]] inline double luminance_weight(const model::Rgb& c) {
+[[nodiscard]] inline double luminance_weight(const Rgb& c) {
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
 }
 
 // Radiant power per channel (W) of a luminaire emitting `lumens` in colour `colour` (any scale, not black).
-[[nodiscard]] inline model::Rgb power_from_lumens(double lumens, const model::Rgb& colour) {
+[[nodiscard]] inline Rgb power_from_lumens(double lumens, const Rgb& colour) {
   return colour * (lumens / (kLumensPerWatt * luminance_weight(colour)));
 }
 
 // Illuminance (lux) of an irradiance per channel (W/m2); luminance (cd/m2) of a diffuse surface's radiosity
 // is this divided by pi.
-[[nodiscard]] inline double lux_from_irradiance(const model::Rgb& e) {
+[[nodiscard]] inline double lux_from_irradiance(const Rgb& e) {
   return kLumensPerWatt * luminance_weight(e);
 }
 
-}  // namespace walk::compiler
+}  // namespace walk::model
