@@ -20,6 +20,13 @@ void paste(render::Image& out, const render::Image& part, int x0) {
                 &out.rgba[(std::size_t(y) * out.width + x0) * 4]);
 }
 
+// [display] white_luminance (cd/m2) as the radiosity (W/m2) shown as white: a diffuse surface of radiosity B
+// has luminance 179 B / pi.
+std::optional<float> white_radiosity(const DisplayConfig& display) {
+  if (!display.white_luminance) return std::nullopt;
+  return float(*display.white_luminance * std::numbers::pi / model::kLumensPerWatt);
+}
+
 // One output (a window, a full-screen monitor or an off-screen surface) showing one or more views side by
 // side: stereo eyes and screens of a spanning output each get a renderer of their own (its own refinement,
 // accumulation and governor) presented into its part of the output.
@@ -29,11 +36,8 @@ class Output {
       : bundle_(bundle),
         refine_(display.refine),
         target_hz_(display.target_hz * views_in_frame),
-        white_radiosity_(display.white_luminance
-                             ? std::optional<float>(
-                                   float(*display.white_luminance* std::numbers::pi / model::kLumensPerWatt))
-                             : std::nullopt),
-        frame_timing_(render::parse_frame_timing(display.frame_timing).value_or(render::FrameTiming::Auto)) {
+        frame_timing_(render::parse_frame_timing(display.frame_timing).value_or(render::FrameTiming::Auto)),
+        white_radiosity_(white_radiosity(display)) {
     render::BackendOptions options;
     options.kind = render::parse_backend_kind(display.backend);
     options.width = display.width;

@@ -266,7 +266,7 @@ TEST_F(BundleTest, LuminaireShapesAndDistributionsRoundTripAndAreValidated) {
   lights[1].exponent = 4.0;
   lights[2].kind = LuminaireKind::Photometric;
   lights[2].distribution = table;
-  for (const auto& l : lights) {
+  for (std::size_t i = 0; i < lights.size(); ++i) {
     c.luminaires.push_back({});
     c.luminaires.back().name = c.add_string("l");
   }
