@@ -27,7 +27,7 @@ build() {  # name sources...: rebuilt only when a source is newer than the binar
   local name=$1
   shift
   local stale=0
-  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp "$src"/devices/*/*.hpp "$src"/compiler/scene/*.hpp "$src"/firmware-host/*.hpp; do
+  for f in "$@" "$src"/fuzz/*.hpp "$src"/compiler/import/*.hpp "$src"/model/*.hpp "$src"/devices/*/*.hpp "$src"/compiler/scene/*.hpp "$src"/compiler/photometry/*.hpp "$src"/firmware-host/*.hpp; do
     [ -f "$f" ] && [ "$f" -nt "$out/$name" ] && stale=1
   done
   [ -x "$out/$name" ] && [ $stale = 0 ] && return 0
@@ -45,9 +45,12 @@ build hid_report_fuzzer "$src"/fuzz/hid_report_fuzzer.cpp "$src"/devices/hid/rep
 # U+00A1..U+0499, U+2C3E..U+3037 and U+FB26..U+FEFE, a defect in the system header that we cannot mend and
 # that the shipped build survives (SceneConfigTest.NonAsciiNamesAndCommentsLoadAsWritten); everything else
 # stays checked.
+photometry=("$src"/compiler/photometry/{photometry_file,ies_reader,eulumdat_reader,symmetry,colour_temperature}.cpp
+            "$src"/model/intensity_distribution.cpp "$src"/common/hash.cpp)
 build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_toml_fuzzer.cpp "$src"/compiler/scene/{scene_config,units}.cpp "$src"/model/toml_table.cpp \
-  "$src"/compiler/partition/visibility_config.cpp \
-  "${common[@]}" -ltomlplusplus -lspdlog -lfmt
+  "$src"/compiler/partition/visibility_config.cpp "${photometry[@]}" \
+  "${common[@]}" -ltomlplusplus -lspdlog -lfmt -lxxhash
+build photometry_fuzzer "$src"/fuzz/photometry_fuzzer.cpp "${photometry[@]}" "${common[@]}" -lspdlog -lfmt -lxxhash
 # OBJ through the mesh reader: assimp (Debian's, uninstrumented) parses; our conversion of its scene is checked.
 build obj_fuzzer "$src"/fuzz/obj_fuzzer.cpp "$src"/compiler/import/{mesh_reader,texture_image,uv_fit}.cpp \
   "$src"/compiler/cleanup/stray_geometry.cpp "$src"/model/srgb.cpp "${common[@]}" -lassimp -lpng -ljpeg -lspdlog -lfmt
@@ -57,7 +60,7 @@ build kiosk_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/kiosk_tom
   "$src"/firmware-host/{kiosk_config,device_config}.cpp "$src"/devices/hid/report_layout.cpp "$src"/devices/devices.cpp \
   "$src"/model/{error,toml_table}.cpp -ltomlplusplus -lfmt
 status=0
-for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml obj; do
+for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml obj photometry; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "compiler/photometry/symmetry.hpp"
@@ -11,6 +12,10 @@
 
 namespace walk::compiler {
 namespace {
+
+// A published table at 0.1 degree by 1 degree holds 650,000 values: more is a corrupt count, refused before
+// memory is reserved for it.
+constexpr std::int64_t kMaxTableValues = 1'000'000;
 
 // The numbers after the TILT line, each with the line it is on: LM-63 lets them wrap anywhere.
 class NumberStream {
@@ -131,6 +136,11 @@ model::IntensityDistribution parse_ies(std::string_view text, const std::string&
   if (!(multiplier > 0.0) || !(ballast > 0.0) || !(ballast_lamp > 0.0))
     throw Error(
         located(path, type_line, "the candela multiplier and ballast factors must be greater than 0"));
+  if (std::int64_t(n_vertical) * n_horizontal > kMaxTableValues)
+    throw Error(located(path, type_line,
+                        std::to_string(n_vertical) + " x " + std::to_string(n_horizontal) +
+                            " angles is more than the " + std::to_string(kMaxTableValues) +
+                            " intensities a photometric table may hold"));
   std::vector<double> horizontal(n_horizontal);
   d.gamma_deg.resize(n_vertical);
   for (auto& g : d.gamma_deg) g = in.next("a vertical angle");
