@@ -50,7 +50,6 @@ photometry=("$src"/compiler/photometry/{photometry_file,ies_reader,eulumdat_read
 build scene_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/scene_toml_fuzzer.cpp "$src"/compiler/scene/{scene_config,units}.cpp "$src"/model/toml_table.cpp \
   "$src"/compiler/partition/visibility_config.cpp "${photometry[@]}" \
   "${common[@]}" -ltomlplusplus -lspdlog -lfmt -lxxhash
-build photometry_fuzzer "$src"/fuzz/photometry_fuzzer.cpp "${photometry[@]}" "${common[@]}" -lspdlog -lfmt -lxxhash
 # OBJ through the mesh reader: assimp (Debian's, uninstrumented) parses; our conversion of its scene is checked.
 build obj_fuzzer "$src"/fuzz/obj_fuzzer.cpp "$src"/compiler/import/{mesh_reader,texture_image,uv_fit}.cpp \
   "$src"/compiler/cleanup/stray_geometry.cpp "$src"/model/srgb.cpp "${common[@]}" -lassimp -lpng -ljpeg -lspdlog -lfmt
@@ -60,7 +59,7 @@ build kiosk_toml_fuzzer -DNDEBUG -fno-sanitize=unreachable "$src"/fuzz/kiosk_tom
   "$src"/firmware-host/{kiosk_config,device_config}.cpp "$src"/devices/hid/report_layout.cpp "$src"/devices/devices.cpp \
   "$src"/model/{error,toml_table}.cpp -ltomlplusplus -lfmt
 status=0
-for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml obj photometry; do
+for kind in dxf map bundle csv_trace hid_report modbus_registers scene_toml kiosk_toml obj; do
   corpus="$out/corpus-$kind"
   mkdir -p "$corpus" "$out/artifacts-$kind"
   cp -n "$src"/fuzz/corpus/$kind/* "$corpus"/ 2>/dev/null || true
