@@ -62,6 +62,7 @@ CompileResult compile_scene(const SceneConfig& config, const CompileOptions& opt
     const StageOutcome outcome = stage->run(state, report.input_hash);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.detail = outcome.detail;
+    report.estimated_error = outcome.estimated_error;
     switch (outcome.kind) {
       case StageOutcome::Kind::Ran:
         report.ran = true;

@@ -3,6 +3,7 @@
 // cleanup, recentre, openings, seal, luminaires, mesh, light, compact, meta, cells, lod) -> bundle. Each
 // stage records what it did; a stage the scene does not call for is not run.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct StageReport {
   std::uint64_t items_in = 0;
   std::uint64_t items_out = 0;
   std::string detail;
+  std::optional<double> estimated_error;  // light stage: the solver's own relative error estimate
 };
 
 struct CompileOptions {

@@ -15,6 +15,7 @@
 #include "compiler/pipeline.hpp"
 #include "model/bundle.hpp"
 #include "model/error.hpp"
+#include "model/photometric_units.hpp"
 #include "tools/commands.hpp"
 #include "tools/gnuplot.hpp"
 
@@ -22,10 +23,6 @@ namespace walk::tools {
 namespace {
 
 namespace fs = std::filesystem;
-
-double luminance(const model::Rgb& c) {
-  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-}
 
 struct Args {
   std::vector<std::string> scenes{std::string(WALK_SOURCE_DIR) + "/config/scenes/cornell-box-obj.toml",
@@ -46,7 +43,7 @@ struct Error {
 Error error_against(const std::vector<double>& values, const compiler::PathReference& ref) {
   double diff = 0.0, scale = 0.0, noise = 0.0, sum = 0.0, sum_ref = 0.0;
   for (std::size_t i = 0; i < values.size(); ++i) {
-    const double r = luminance(ref.radiosity[i]);
+    const double r = model::luminance_weight(ref.radiosity[i]);
     sum += values[i];
     sum_ref += r;
     diff += (values[i] - r) * (values[i] - r);
@@ -92,7 +89,7 @@ int run(const Args& a) {
         for (const int paths : a.paths) {
           const auto r = tracer.trace(points, paths, 2 + paths, a.threads);
           std::vector<double> values;
-          for (const auto& v : r.radiosity) values.push_back(luminance(v));
+          for (const auto& v : r.radiosity) values.push_back(model::luminance_weight(v));
           row(scene, "reference", paths, r.rays, r.seconds, 0.0, error_against(values, *reference));
         }
       }
@@ -102,11 +99,11 @@ int run(const Args& a) {
         if (s.name != "light") continue;
         seconds = s.seconds;
         rays = s.items_out;
-        const auto at = s.detail.find("estimated error ");
-        if (at != std::string::npos) estimated = std::stod(s.detail.substr(at + 16)) / 100.0;
+        estimated = s.estimated_error.value_or(0.0);
       }
       std::vector<double> values;
-      for (const auto& p : points) values.push_back(luminance(compiler::displayed_radiosity(*bundle, p)));
+      for (const auto& p : points)
+        values.push_back(model::luminance_weight(compiler::displayed_radiosity(*bundle, p)));
       row(scene, "walk", target, rays, seconds, estimated, error_against(values, *reference));
     }
   }

@@ -10,6 +10,7 @@
 #include "model/bundle.hpp"
 #include "model/error.hpp"
 #include "tools/commands.hpp"
+#include "tools/option_vectors.hpp"
 
 namespace walk::tools {
 namespace {
@@ -20,11 +21,6 @@ struct ProbeArgs {
   std::vector<double> dimmers;
   int rays = 16384;
 };
-
-model::Vec3 vec3(const std::vector<double>& v, const char* what) {
-  if (v.size() != 3) throw Error(std::string("walk probe: --") + what + " needs three numbers x,y,z");
-  return {v[0], v[1], v[2]};
-}
 
 int run_probe(const ProbeArgs& args) {
   const auto bundle = model::Bundle::open(args.bundle);
@@ -44,11 +40,11 @@ int run_probe(const ProbeArgs& args) {
     levels = args.dimmers;
   }
   compiler::ProbeOptions o;
-  o.at = vec3(args.at, "at");
-  o.normal = vec3(args.normal, "normal");
-  if (!args.look.empty()) o.look = vec3(args.look, "look");
+  o.at = option_vec3(args.at, "at", "in world metres");
+  o.normal = option_vec3(args.normal, "normal");
+  if (!args.look.empty()) o.look = option_vec3(args.look, "look");
   o.indirect_rays = args.rays;
-  const auto r = compiler::probe(*bundle, o);
+  const auto r = compiler::Probe(*bundle).read(o);
   std::printf("probe at %.3f %.3f %.3f (world m), facing %.3f %.3f %.3f; %d indirect rays\n", o.at.x, o.at.y,
               o.at.z, o.normal.x, o.normal.y, o.normal.z, o.indirect_rays);
   std::printf("%-24s %6s %11s %11s %9s %11s %11s", "circuit", "level", "direct lx", "indirect lx", "+- lx",

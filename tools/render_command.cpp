@@ -11,6 +11,7 @@
 #include "render/backend/backend.hpp"
 #include "render/renderer.hpp"
 #include "tools/commands.hpp"
+#include "tools/option_vectors.hpp"
 
 namespace walk::tools {
 namespace {
@@ -27,11 +28,6 @@ struct RenderArgs {
   bool map = false;
   int refine = 0;  // 0: one plain frame; N: converge adaptive refinement with N anti-aliasing samples
 };
-
-glm::dvec3 to_vec3(const std::vector<double>& v, const char* what) {
-  if (v.size() != 3) throw Error(std::string("--") + what + " needs three numbers x,y,z in local metres");
-  return {v[0], v[1], v[2]};
-}
 
 int run_render(const RenderArgs& args) {
   int width = 0, height = 0;
@@ -50,8 +46,8 @@ int run_render(const RenderArgs& args) {
   render::Renderer renderer(*bundle);
   if (!args.dimmers.empty()) renderer.set_dimmers(args.dimmers);
   render::View view;
-  view.eye = to_vec3(args.eye, "eye");
-  view.forward = to_vec3(args.look, "look") - view.eye;
+  view.eye = option_vec3(args.eye, "eye", "in local metres");
+  view.forward = option_vec3(args.look, "look", "in local metres") - view.eye;
   view.fov_y_degrees = args.fov;
   renderer.set_map_overlay(args.map);
   if (args.refine > 0) {

@@ -9,9 +9,11 @@
 #include <random>
 
 #include "common/parallel_for.hpp"
+#include "compiler/lighting/drawn_triangles.hpp"
 #include "compiler/photometry/emission.hpp"
 #include "compiler/raycast/triangle_bvh.hpp"
 #include "model/luminaire_shapes.hpp"
+#include "model/photometric_units.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -27,14 +29,6 @@ constexpr double kMinDistanceSquared = 1e-4;
 // (at most kMaxSurvival, so a white room still ends).
 constexpr int kSureBounces = 2;
 constexpr double kMaxSurvival = 0.95;
-
-double luminance(const model::Rgb& c) {
-  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-}
-
-model::Vec3 vertex_position(const model::VertexRecord& v) {
-  return {v.position[0], v.position[1], v.position[2]};
-}
 
 // Cosine-distributed direction about unit n (Malley's method), its own basis.
 model::Vec3 cosine_around(const model::Vec3& n, double u1, double u2) {
@@ -62,20 +56,14 @@ double point_intensity_per_watt(const model::Luminaire& l, const model::Vec3& w)
 }  // namespace
 
 std::vector<SurfacePoint> surface_points(const model::Bundle& b, std::size_t count) {
-  std::vector<std::array<std::uint32_t, 3>> triangles;
+  const std::vector<TriangleCorners> triangles = drawn_triangles(b);
   std::vector<double> cumulative;
   double total = 0.0;
   const auto v = b.vertices();
-  for (const auto& p : b.polygons()) {
-    const auto role = static_cast<model::Role>(p.role);
-    if (role != model::Role::Opaque && role != model::Role::Glass) continue;
-    for (std::uint32_t k = p.first_index; k + 2 < p.first_index + p.index_count; k += 3) {
-      const std::array<std::uint32_t, 3> c{b.indices()[k], b.indices()[k + 1], b.indices()[k + 2]};
-      const model::Vec3 a = vertex_position(v[c[0]]);
-      total += 0.5 * glm::length(glm::cross(vertex_position(v[c[1]]) - a, vertex_position(v[c[2]]) - a));
-      triangles.push_back(c);
-      cumulative.push_back(total);
-    }
+  for (const auto& c : triangles) {
+    const model::Vec3 a = vertex_position(v[c[0]]);
+    total += 0.5 * glm::length(glm::cross(vertex_position(v[c[1]]) - a, vertex_position(v[c[2]]) - a));
+    cumulative.push_back(total);
   }
   std::vector<SurfacePoint> out;
   if (triangles.empty()) return out;
@@ -89,7 +77,7 @@ std::vector<SurfacePoint> surface_points(const model::Bundle& b, std::size_t cou
         {c[0], c[1], c[2]}, {1.0 - s, s * (1.0 - t), s * t}, model::Vec3(0.0), model::Vec3(0.0), {}};
     for (int k = 0; k < 3; ++k) p.position += vertex_position(v[c[k]]) * p.weights[k];
     const auto& first = v[c[0]];
-    p.normal = glm::normalize(model::Vec3(first.normal[0], first.normal[1], first.normal[2]));
+    p.normal = glm::normalize(vertex_normal(first));
     p.albedo = {first.albedo[0], first.albedo[1], first.albedo[2]};
     out.push_back(p);
   }
@@ -153,17 +141,12 @@ struct PathTracer::Impl {
 PathTracer::PathTracer(const model::Bundle& b) : impl_(std::make_unique<Impl>()) {
   std::vector<Triangle> triangles;
   const auto v = b.vertices();
-  for (const auto& p : b.polygons()) {
-    const auto role = static_cast<model::Role>(p.role);
-    if (role != model::Role::Opaque && role != model::Role::Glass) continue;  // panels glow, by next event
-    for (std::uint32_t k = p.first_index; k + 2 < p.first_index + p.index_count; k += 3) {
-      const auto& a = v[b.indices()[k]];
-      triangles.push_back({vertex_position(a), vertex_position(v[b.indices()[k + 1]]),
-                           vertex_position(v[b.indices()[k + 2]]),
-                           static_cast<std::uint32_t>(impl_->normal.size())});
-      impl_->normal.push_back(glm::normalize(model::Vec3(a.normal[0], a.normal[1], a.normal[2])));
-      impl_->albedo.push_back({a.albedo[0], a.albedo[1], a.albedo[2]});
-    }
+  for (const auto& c : drawn_triangles(b)) {  // panels glow, by next event
+    const auto& a = v[c[0]];
+    triangles.push_back({vertex_position(a), vertex_position(v[c[1]]), vertex_position(v[c[2]]),
+                         static_cast<std::uint32_t>(impl_->normal.size())});
+    impl_->normal.push_back(glm::normalize(vertex_normal(a)));
+    impl_->albedo.push_back({a.albedo[0], a.albedo[1], a.albedo[2]});
   }
   impl_->bvh = std::make_unique<TriangleBvh>(std::move(triangles));
   impl_->luminaires = model::load_luminaires(b);
@@ -220,7 +203,7 @@ PathReference PathTracer::trace(const std::vector<SurfacePoint>& points, int pat
         }
         const model::Rgb radiosity = points[i].albedo * irradiance;
         sum += radiosity;
-        const double y = luminance(radiosity);
+        const double y = model::luminance_weight(radiosity);
         sum_y += y;
         sum_y2 += y * y;
       }

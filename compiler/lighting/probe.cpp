@@ -8,6 +8,7 @@
 
 #include "common/parallel_for.hpp"
 #include "compiler/lighting/direct_light.hpp"
+#include "compiler/lighting/drawn_triangles.hpp"
 #include "compiler/radiosity/sampling.hpp"
 #include "compiler/raycast/triangle_bvh.hpp"
 #include "model/error.hpp"
@@ -30,45 +31,17 @@ model::Vec3 unit(const model::Vec3& v, const char* what) {
   return v / len;
 }
 
-// The bundle's drawn surfaces as triangles, each with its three VERT ids (light is read there).
-struct Surfaces {
-  std::vector<std::array<std::uint32_t, 3>> corners;
-  std::unique_ptr<TriangleBvh> bvh;
-};
-
-Surfaces surfaces_of(const model::Bundle& b) {
-  Surfaces s;
-  std::vector<Triangle> triangles;
-  const auto v = b.vertices();
-  const auto idx = b.indices();
-  for (const auto& p : b.polygons()) {
-    const auto role = static_cast<model::Role>(p.role);
-    if (role != model::Role::Opaque && role != model::Role::Glass) continue;  // panels are direct light
-    for (std::uint32_t k = p.first_index; k + 2 < p.first_index + p.index_count; k += 3) {
-      const std::array<std::uint32_t, 3> c{idx[k], idx[k + 1], idx[k + 2]};
-      auto at = [&](int i) {
-        return model::Vec3(v[c[i]].position[0], v[c[i]].position[1], v[c[i]].position[2]);
-      };
-      triangles.push_back({at(0), at(1), at(2), static_cast<std::uint32_t>(s.corners.size())});
-      s.corners.push_back(c);
-    }
-  }
-  s.bvh = std::make_unique<TriangleBvh>(std::move(triangles));
-  return s;
-}
-
 // Radiosity per circuit and channel where a ray from `origin` along `dir` first meets a surface's front,
 // interpolated from its corners; false for a miss or a back face (the inside of a wall).
-bool radiosity_at_hit(const model::Bundle& b, const Surfaces& s, const model::Vec3& origin,
-                      const model::Vec3& dir, std::vector<double>& out, bool& back,
-                      double* distance = nullptr) {
+bool radiosity_at_hit(const model::Bundle& b, const std::vector<TriangleCorners>& corners,
+                      const TriangleBvh& bvh, const model::Vec3& origin, const model::Vec3& dir,
+                      std::vector<double>& out, bool& back, double* distance = nullptr) {
   back = false;
-  const auto hit = s.bvh->closest_facing(origin, dir, 0.0, 1e30, kTieDistance);
+  const auto hit = bvh.closest_facing(origin, dir, 0.0, 1e30, kTieDistance);
   if (!hit) return false;
-  const Triangle& t = s.bvh->triangles()[hit->triangle];
-  const auto& c = s.corners[t.polygon];
-  const auto& v0 = b.vertices()[c[0]];
-  if (glm::dot(dir, model::Vec3(v0.normal[0], v0.normal[1], v0.normal[2])) >= 0.0) {
+  const Triangle& t = bvh.triangles()[hit->triangle];
+  const auto& c = corners[t.polygon];
+  if (glm::dot(dir, vertex_normal(b.vertices()[c[0]])) >= 0.0) {
     back = true;
     return false;
   }
@@ -93,7 +66,30 @@ bool radiosity_at_hit(const model::Bundle& b, const Surfaces& s, const model::Ve
 
 }  // namespace
 
-ProbeResult probe(const model::Bundle& b, const ProbeOptions& o) {
+struct Probe::Impl {
+  const model::Bundle& bundle;
+  std::vector<TriangleCorners> corners;  // per BVH triangle id
+  std::unique_ptr<TriangleBvh> bvh;
+  std::vector<model::Luminaire> luminaires;
+};
+
+Probe::Probe(const model::Bundle& b) : impl_(std::make_unique<Impl>(Impl{b, drawn_triangles(b), {}, {}})) {
+  std::vector<Triangle> triangles;
+  const auto v = b.vertices();
+  for (std::size_t i = 0; i < impl_->corners.size(); ++i) {
+    const auto& c = impl_->corners[i];
+    triangles.push_back({vertex_position(v[c[0]]), vertex_position(v[c[1]]), vertex_position(v[c[2]]),
+                         static_cast<std::uint32_t>(i)});
+  }
+  impl_->bvh = std::make_unique<TriangleBvh>(std::move(triangles));
+  impl_->luminaires = model::load_luminaires(b);
+}
+
+Probe::~Probe() = default;
+
+ProbeResult Probe::read(const ProbeOptions& o) const {
+  const model::Bundle& b = impl_->bundle;
+  const TriangleBvh& bvh = *impl_->bvh;
   const auto& m = b.meta();
   const model::Vec3 origin_world(m.origin[0], m.origin[1], m.origin[2]);
   if (!std::isfinite(glm::dot(o.at, o.at))) throw Error("walk probe: --at must be a finite point");
@@ -102,12 +98,11 @@ ProbeResult probe(const model::Bundle& b, const ProbeOptions& o) {
   const std::size_t circuits = b.circuits().size();
   ProbeResult r;
   for (const auto& c : b.circuits()) r.circuits.push_back({std::string(b.string(c.name))});
-  const Surfaces s = surfaces_of(b);
 
   // Direct: a white meter's radiosity is its irradiance.
   const SurfaceSample meter{at, n, model::Rgb(1.0)};
   const auto direct =
-      direct_light({&meter, 1}, model::load_luminaires(b), circuits, *s.bvh, {o.panel_samples, o.threads});
+      direct_light({&meter, 1}, impl_->luminaires, circuits, bvh, {o.panel_samples, o.threads});
   for (std::size_t c = 0; c < circuits; ++c)
     r.circuits[c].direct_lux =
         model::lux_from_irradiance({direct[c * 3], direct[c * 3 + 1], direct[c * 3 + 2]});
@@ -128,7 +123,7 @@ ProbeResult probe(const model::Bundle& b, const ProbeOptions& o) {
         u2 = ((i / side) + u2) / side;
       }
       bool back = false;
-      if (!radiosity_at_hit(b, s, start, cosine_direction(n, u1, u2), radiosity, back)) {
+      if (!radiosity_at_hit(b, impl_->corners, bvh, start, cosine_direction(n, u1, u2), radiosity, back)) {
         backs[i] = back;
         continue;
       }
@@ -155,7 +150,7 @@ ProbeResult probe(const model::Bundle& b, const ProbeOptions& o) {
     std::vector<double> radiosity;
     bool back = false;
     double distance = 0.0;
-    if (radiosity_at_hit(b, s, at, unit(*o.look, "--look"), radiosity, back, &distance)) {
+    if (radiosity_at_hit(b, impl_->corners, bvh, at, unit(*o.look, "--look"), radiosity, back, &distance)) {
       r.look_distance = distance;
       // A diffuse surface of radiosity B has luminance B / pi.
       for (std::size_t c = 0; c < circuits; ++c)

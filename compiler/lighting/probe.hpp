@@ -3,6 +3,7 @@
 // it. Direct light is gathered from the bundle's luminaires (panels sampled over their area, points and
 // fixtures from their intensity), indirect light by cosine-distributed rays that read the radiosity the
 // light stage stored on the surfaces they hit. Both in the units the solver used (docs/RADIOSITY.md).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,7 +36,18 @@ struct ProbeResult {
   std::optional<double> look_distance;   // metres to the surface `look` meets, when it meets one
 };
 
-// Throws walk::Error for a zero normal or look direction or a point that is not finite.
-[[nodiscard]] ProbeResult probe(const model::Bundle& bundle, const ProbeOptions& options);
+// A light meter for one bundle: its surfaces' BVH and its luminaires are built once, so a survey of many
+// points pays for them once. The bundle must outlive the probe.
+class Probe {
+ public:
+  explicit Probe(const model::Bundle& bundle);
+  ~Probe();
+  // Throws walk::Error for a zero normal or look direction or a point that is not finite.
+  [[nodiscard]] ProbeResult read(const ProbeOptions& options) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace walk::compiler

@@ -116,7 +116,7 @@ class LightStage final : public Stage {
     out.light = vertex_radiosity(s.patches, r);
     out.polygon_light = polygon_radiosity(s.patches, r, out.polygons.size());
     const auto& st = r.stats;
-    return StageOutcome::ran(
+    auto outcome = StageOutcome::ran(
         s.patches.patches.size(), st.rays,
         fmt::format(
             "radiosity: {}, estimated error {:.2f}%; {} patches, {} circuits, {} rays in {} shots / {} "
@@ -124,6 +124,8 @@ class LightStage final : public Stage {
             how, 100.0 * st.estimated_error, s.patches.patches.size(), circuits, st.rays, st.shots, st.rounds,
             st.rays / st.seconds * 1e-6, 100.0 * st.unshot / st.emitted, st.absorbed, st.escaped,
             st.emitted));
+    outcome.estimated_error = st.estimated_error;
+    return outcome;
   }
 
   // Accuracy by target: a pilot solve small enough to cost little measures the error estimate, which falls

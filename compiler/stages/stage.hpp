@@ -3,6 +3,7 @@
 // earlier stages left in the CompileState and writes its own output there. compile_scene (pipeline.cpp)
 // runs the list in stages.hpp, times each, logs its stats line and records it in the bundle.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,12 +48,13 @@ struct StageOutcome {
   enum class Kind : std::uint8_t { Ran, Skipped, Reused } kind = Kind::Ran;
   std::uint64_t items_in = 0, items_out = 0;
   std::string detail;
+  std::optional<double> estimated_error;  // of the light it made, where the stage can tell
 
   static StageOutcome ran(std::uint64_t in, std::uint64_t out, std::string detail = {}) {
-    return {Kind::Ran, in, out, std::move(detail)};
+    return {Kind::Ran, in, out, std::move(detail), {}};
   }
-  static StageOutcome skipped(std::string why) { return {Kind::Skipped, 0, 0, std::move(why)}; }
-  static StageOutcome reused(std::string why) { return {Kind::Reused, 0, 0, std::move(why)}; }
+  static StageOutcome skipped(std::string why) { return {Kind::Skipped, 0, 0, std::move(why), {}}; }
+  static StageOutcome reused(std::string why) { return {Kind::Reused, 0, 0, std::move(why), {}}; }
 };
 
 class Stage {

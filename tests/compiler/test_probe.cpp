@@ -57,9 +57,8 @@ TEST_F(ProbeTest, TheLightStageMeetsItsTargetError) {
   const auto light =
       std::find_if(stages_.begin(), stages_.end(), [](const auto& s) { return s.name == "light"; });
   ASSERT_NE(light, stages_.end());
-  const auto at = light->detail.find("estimated error ");
-  ASSERT_NE(at, std::string::npos) << light->detail;
-  const double estimate = std::stod(light->detail.substr(at + 16)) / 100.0;
+  ASSERT_TRUE(light->estimated_error) << light->detail;
+  const double estimate = *light->estimated_error;
   EXPECT_LE(estimate, 0.03 * 1.15) << light->detail;  // within the stage's slack of the target
   EXPECT_GT(estimate, 0.03 * 0.5) << light->detail;   // and not far more rays than it asked for
   EXPECT_NE(light->detail.find("target 3.00%: pilot"), std::string::npos) << light->detail;
@@ -85,6 +84,7 @@ TEST_F(ProbeTest, MeanIlluminanceOverTheCubeMatchesCie171) {
   const Face faces[] = {{0, 0, 1}, {0, kSide, -1}, {1, 0, 1}, {1, kSide, -1}, {2, 0, 1}, {2, kSide, -1}};
   double sum_total = 0.0, sum_direct = 0.0;
   int count = 0;
+  const Probe meter(*bundle_);
   ProbeOptions o;
   o.indirect_rays = 1024;
   for (const auto& f : faces) {
@@ -97,7 +97,7 @@ TEST_F(ProbeTest, MeanIlluminanceOverTheCubeMatchesCie171) {
         o.at[v] = (j + 0.5) * kSide / kGrid;
         o.normal = model::Vec3(0.0);
         o.normal[f.axis] = f.facing;
-        const auto r = probe(*bundle_, o);
+        const auto r = meter.read(o);
         ASSERT_EQ(r.circuits.size(), 1u);
         EXPECT_LT(r.back_face_fraction, 1e-3);
         sum_direct += r.circuits[0].direct_lux;
@@ -117,15 +117,16 @@ TEST_F(ProbeTest, MeanIlluminanceOverTheCubeMatchesCie171) {
 }
 
 TEST_F(ProbeTest, AMeterBehindAWallSaysSoAndALookReadsLuminance) {
+  const Probe meter(*bundle_);
   ProbeOptions o;
   o.at = {2, 2, -0.5};  // under the floor, facing up into its back
   o.indirect_rays = 256;
-  const auto under = probe(*bundle_, o);
+  const auto under = meter.read(o);
   EXPECT_GT(under.back_face_fraction, 0.9);      // the rest pass beside the floor, nearly level
   EXPECT_EQ(under.circuits[0].direct_lux, 0.0);  // the floor shadows the fixture
   o.at = {2, 2, 2.5};
   o.look = model::Vec3(1, 0, 0);
-  const auto looking = probe(*bundle_, o);
+  const auto looking = meter.read(o);
   ASSERT_TRUE(looking.look_distance);
   EXPECT_NEAR(*looking.look_distance, 2.0, 1e-6);
   // The wall's middle: direct I / r^2 (10,000 / 4 pi lm/sr over 4 m2, r = 2.06 m, cos 0.97) plus about
