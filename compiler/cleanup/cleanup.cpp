@@ -6,8 +6,10 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <polyclipping/clipper.hpp>
+#include <tuple>
 #include <unordered_map>
 
+#include "common/hash.hpp"
 #include "compiler/geometry/clipper_convert.hpp"
 #include "compiler/geometry/plane_frame.hpp"
 
@@ -182,14 +184,62 @@ std::size_t coplanar_overlaps(const model::Model& model, double tol, std::size_t
   return overlaps;
 }
 
+// Between loops in a face's key: no corner lies there (corners beyond 1e8 m are refused on import).
+constexpr double kHoleSeparator = 1e300;
+
+// The outer loop from its smallest corner on, in its own order (so the side it faces is kept), then holes
+// as given: two faces with equal keys are the same face on the same side once corners are welded.
+std::vector<double> face_key(const model::Polygon& p) {
+  const auto& v = p.vertices;
+  const auto less = [](const Vec3& a, const Vec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  };
+  const std::size_t first = std::min_element(v.begin(), v.end(), less) - v.begin();
+  std::vector<double> key;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec3& c = v[(first + i) % v.size()];
+    key.insert(key.end(), {c.x, c.y, c.z});
+  }
+  for (const auto& hole : p.holes) {
+    key.push_back(kHoleSeparator);
+    for (const Vec3& c : hole) key.insert(key.end(), {c.x, c.y, c.z});
+  }
+  return key;
+}
+
+// Drops faces whose key repeats an earlier face's; keeps the first. Returns how many were dropped.
+std::size_t drop_duplicates(std::vector<model::Polygon>& polygons, CleanupStats& stats) {
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> seen;  // key hash -> faces kept with it
+  std::vector<model::Polygon> kept;
+  kept.reserve(polygons.size());
+  std::size_t dropped = 0;
+  for (auto& p : polygons) {
+    const std::vector<double> key = face_key(p);
+    auto& same_hash = seen[hash_bytes(0, key.data(), key.size() * sizeof(double))];
+    const auto twin = std::find_if(same_hash.begin(), same_hash.end(),
+                                   [&](std::size_t k) { return face_key(kept[k]) == key; });
+    if (twin != same_hash.end()) {
+      if (dropped++ == 0) {
+        stats.first_duplicate_line = p.source_line;
+        stats.first_duplicated_line = kept[*twin].source_line;
+      }
+      continue;
+    }
+    same_hash.push_back(kept.size());
+    kept.push_back(std::move(p));
+  }
+  polygons = std::move(kept);
+  return dropped;
+}
+
 }  // namespace
 
 std::string CleanupStats::summary() const {
   return "weld " + std::to_string(weld_tolerance) + " m: welded " + std::to_string(vertices_welded) +
          " corners removed " + std::to_string(corners_removed) + " faces dropped " +
-         std::to_string(faces_dropped) + " non-planar split " + std::to_string(nonplanar_split) + " (+" +
-         std::to_string(triangles_added) + " triangles) coplanar overlaps " +
-         std::to_string(coplanar_overlaps) +
+         std::to_string(faces_dropped) + " duplicates dropped " + std::to_string(duplicates_dropped) +
+         " non-planar split " + std::to_string(nonplanar_split) + " (+" + std::to_string(triangles_added) +
+         " triangles) coplanar overlaps " + std::to_string(coplanar_overlaps) +
          (planes_unchecked ? " (" + std::to_string(planes_unchecked) + " crowded planes unchecked)" : "");
 }
 
@@ -226,6 +276,7 @@ CleanupStats clean_up(model::Model& model, double weld_metres) {
     kept.push_back(std::move(p));
   }
   model.polygons = std::move(kept);
+  stats.duplicates_dropped = drop_duplicates(model.polygons, stats);
   stats.coplanar_overlaps = coplanar_overlaps(model, tol, stats.planes_unchecked);
   return stats;
 }

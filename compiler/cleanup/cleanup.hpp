@@ -1,7 +1,9 @@
 #pragma once
 // Geometry clean-up between import and the rest of the compiler, so that later stages see stable numerics:
 // vertices within a tolerance relative to the model's size are welded, repeated and collinear corners are
-// removed, zero-area faces are dropped, non-planar faces are split into planar triangles, and overlapping
+// removed, zero-area faces are dropped, a face repeating another's welded corners on the same side is
+// dropped (it would z-fight and split the light between two copies), non-planar faces are split into
+// planar triangles, and overlapping
 // coplanar faces are detected (and reported, not removed: EnergyPlus windows and doors are coplanar with
 // their walls on purpose and the openings stage cuts them). Concave faces with holes are kept whole: the
 // mesher triangulates them exactly. Recentring far-away models is the pipeline's "recentre" stage.
@@ -28,12 +30,14 @@ inline constexpr double kNonPlanarRelative = 1e-3;
 inline constexpr std::size_t kMaxFacesPerPlaneCheck = 2000;
 
 struct CleanupStats {
-  double weld_tolerance = 0.0;        // metres, as used
-  std::size_t vertices_welded = 0;    // corners moved onto a nearby one
-  std::size_t corners_removed = 0;    // repeated or collinear corners taken out of faces
-  std::size_t faces_dropped = 0;      // zero-area (or collinear) faces removed
-  std::size_t nonplanar_split = 0;    // non-planar faces replaced by triangles
-  std::size_t triangles_added = 0;    // triangles those became
+  double weld_tolerance = 0.0;         // metres, as used
+  std::size_t vertices_welded = 0;     // corners moved onto a nearby one
+  std::size_t corners_removed = 0;     // repeated or collinear corners taken out of faces
+  std::size_t faces_dropped = 0;       // zero-area (or collinear) faces removed
+  std::size_t nonplanar_split = 0;     // non-planar faces replaced by triangles
+  std::size_t triangles_added = 0;     // triangles those became
+  std::size_t duplicates_dropped = 0;  // faces repeating another's corners exactly on the same side
+  std::uint32_t first_duplicate_line = 0, first_duplicated_line = 0;  // source lines of the first pair
   std::size_t coplanar_overlaps = 0;  // pairs of same-facing coplanar faces that overlap in area
   std::size_t planes_unchecked = 0;   // planes with too many faces to check for overlaps
   [[nodiscard]] std::string summary() const;

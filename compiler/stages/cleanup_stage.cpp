@@ -28,6 +28,11 @@ class CleanupStage final : public Stage {
           config.keep_outliers ? "kept" : "left out", config.keep_outliers ? "drop" : "keep", config.path);
     const CleanupStats c = clean_up(s.model, config.weld_metres);
     s.weld_tolerance = c.weld_tolerance;
+    if (c.duplicates_dropped > 0)
+      spdlog::warn(
+          "{}: {} face(s) repeat another face's corners on the same side and were left out, the first at "
+          "source line or face {} (a copy of {}); check the model's export if faces were meant to differ",
+          config.model_file, c.duplicates_dropped, c.first_duplicate_line, c.first_duplicated_line);
     if (!has_drawn_faces(s.model))
       throw Error(located(
           config.model_file, 0,

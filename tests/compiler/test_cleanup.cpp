@@ -19,6 +19,28 @@ model::Polygon poly(std::vector<Vec3> v) {
   return p;
 }
 
+TEST(Cleanup, DropsExactRepeatsOnTheSameSideOnly) {
+  // The Cornell box's OBJ lists each box's "bottom" face as a repeat of another face: the copy would
+  // z-fight and take half the light the solver deposits there.
+  model::Model m;
+  const std::vector<Vec3> quad{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.polygons.push_back(poly(quad));
+  m.polygons.back().source_line = 10;
+  m.polygons.push_back(poly({quad[2], quad[3], quad[0], quad[1]}));  // the same face from another corner
+  m.polygons.back().source_line = 20;
+  m.polygons.push_back(poly({quad[3], quad[2], quad[1], quad[0]}));  // the other side: a back-to-back face
+  m.polygons.push_back(poly(quad));                                  // the same outline with a hole
+  m.polygons.back().holes.push_back({{0.25, 0.25, 0}, {0.25, 0.75, 0}, {0.75, 0.75, 0}, {0.75, 0.25, 0}});
+  m.polygons.push_back(poly({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}));  // a part of it: an overlap, not a repeat
+  const CleanupStats s = clean_up(m);
+  EXPECT_EQ(s.duplicates_dropped, 1u);
+  EXPECT_EQ(s.first_duplicate_line, 20u);
+  EXPECT_EQ(s.first_duplicated_line, 10u);
+  ASSERT_EQ(m.polygons.size(), 4u);
+  EXPECT_EQ(m.polygons[0].source_line, 10u);
+  EXPECT_NE(s.summary().find("duplicates dropped 1"), std::string::npos) << s.summary();
+}
+
 TEST(Cleanup, WeldsCornersWithinToleranceRelativeToModelSize) {
   model::Model m;
   // A 100 m model: weld distance 1e-7 * diagonal ~ 14 um. Corners 5 um apart merge, 1 mm apart do not.
