@@ -8,6 +8,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
+#include <stdexcept>
 
 #include "common/parallel_for.hpp"
 #include "common/progress.hpp"
@@ -94,16 +95,33 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   std::vector<double> unshot(P * K, 0.0);
   std::vector<std::uint64_t> patch_hits(P, 0);
   std::vector<double> emitted_exitance(P, 0.0);  // scalar
+  const bool gathered = !options.gathered_direct.empty();
+  if (gathered && options.gathered_direct.size() != P * K)
+    throw std::invalid_argument(
+        "solve_radiosity: gathered direct light is not one value per patch and channel");
   for (const auto& e : area) {
     emitted_exitance[e.patch] += (e.exitance.r + e.exitance.g + e.exitance.b) / 3.0;
     const auto& p = set.patches[e.patch];
     for (int c = 0; c < 3; ++c) {
       result.radiosity[e.patch * K + e.circuit * 3 + c] += e.exitance[c];
+      if (gathered) continue;  // its direct light is already on the receivers
       unshot[e.patch * K + e.circuit * 3 + c] += e.exitance[c] * p.area;
       stats.emitted += e.exitance[c] * p.area / 3.0;
     }
   }
-  for (const auto& e : points) stats.emitted += (e.power.r + e.power.g + e.power.b) / 3.0;
+  if (gathered) {
+    for (std::size_t i = 0; i < P; ++i) {
+      const double a = set.patches[i].area;
+      for (std::size_t k = 0; k < K; ++k) {
+        const double b = options.gathered_direct[i * K + k];
+        result.radiosity[i * K + k] += b;
+        unshot[i * K + k] += b * a;
+        stats.emitted += b * a / 3.0;
+      }
+    }
+  } else {
+    for (const auto& e : points) stats.emitted += (e.power.r + e.power.g + e.power.b) / 3.0;
+  }
 
   std::vector<Shot> shots;
   std::vector<std::int32_t> hits;
@@ -185,7 +203,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   };
 
   // Point and spot luminaires shoot once, first: they are not patches and receive nothing.
-  if (!points.empty()) {
+  if (!points.empty() && !gathered) {
     shots.clear();
     for (std::uint32_t i = 0; i < points.size(); ++i) {
       const auto& e = points[i];
@@ -252,8 +270,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     // Scalar radiosity (the mean over channels of the sum over circuits, as scalar_power sums power) less
     // the emitters' own exitance: a panel's glow is exact and would swamp the light on the surfaces.
     const double reflected = std::max(0.0, scalar_power(&result.radiosity[i * K], K) - emitted_exitance[i]);
+    const double shot =
+        gathered ? std::max(0.0, reflected - scalar_power(&options.gathered_direct[i * K], K)) : reflected;
     square += a * reflected * reflected;
-    if (patch_hits[i] > 0) variance += a * reflected * reflected / double(patch_hits[i]);
+    if (patch_hits[i] > 0) variance += a * shot * shot / double(patch_hits[i]);
   }
   stats.estimated_error = square > 0.0 ? std::sqrt(variance / square) : 0.0;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -48,6 +48,11 @@ struct RadiosityOptions {
   std::uint64_t seed = 1;
   std::uint64_t max_rays = 2'000'000'000;  // safety stop
   std::string caster = "axial";            // ray caster by name (compiler/raycast/ray_caster.hpp)
+  // Direct light already gathered at the receivers, as the radiosity it gives each patch ([patch][circuit]
+  // [channel], W/m2, reflectance applied): when set, luminaires shoot nothing and only this reflected light
+  // and what it reflects in turn is shot (Wallace, Elmquist & Haines 1989), so shooting noise is in the
+  // indirect light alone. The result's radiosity includes it; `emitted` then counts the power it injects.
+  std::span<const double> gathered_direct;
 };
 
 struct RadiosityStats {
@@ -64,8 +69,9 @@ struct RadiosityStats {
   double seconds = 0.0;
   // The solver's own estimate of its error: every ray carries the same power, so the light a patch
   // reflects is its ray hits h times that power, off by about 1/sqrt(h) (Poisson). Area-weighted RMS of
-  // those errors over the area-weighted RMS reflected radiosity: sqrt(sum A B_r^2 / h / sum A B_r^2), B_r
-  // the reflected part of B (emission is exact), scalar over circuits and channels.
+  // those errors over the area-weighted RMS reflected radiosity: sqrt(sum A B_s^2 / h / sum A B_r^2), B_r
+  // the reflected part of B (emission is exact), B_s its shot part (B_r less any gathered direct light),
+  // scalar over circuits and channels.
   double estimated_error = 0.0;
 };
 

@@ -359,7 +359,7 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("lighting");
   if (!t) return;
   t->only({"method", "grid", "samples_per_luminaire", "rays_per_watt", "residual", "ambient", "exposure",
-           "white_luminance", "ray_caster", "target_error"});
+           "white_luminance", "ray_caster", "target_error", "direct", "refine"});
   auto& l = cfg.lighting;
   if (const auto m = t->string("method")) {
     if (*m == "radiosity")
@@ -369,6 +369,11 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
     else
       t->fail("method", "unknown method '" + *m + "' (known: radiosity, direct)");
   }
+  if (const auto d = t->string("direct")) {
+    if (*d != "gather" && *d != "shoot") t->fail("direct", "unknown way '" + *d + "' (known: gather, shoot)");
+    l.gather_direct = *d == "gather";
+  }
+  l.refine = t->boolean("refine").value_or(l.refine);
   l.grid = positive(*t, "grid", l.grid);
   if (l.grid < kMinGrid) t->fail("grid", "must be at least " + std::to_string(kMinGrid) + " m");
   if (const auto s = t->integer("samples_per_luminaire")) {

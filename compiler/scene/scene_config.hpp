@@ -46,7 +46,14 @@ enum class LightingMethod { Radiosity, Direct };
 struct LightingConfig {
   LightingMethod method = LightingMethod::Radiosity;
   double grid = 0.5;  // metres: patch edge length (the paper's 21 square-inch patches are about 0.12 m)
-  int samples_per_luminaire = 8;       // direct method: jittered points per area luminaire
+  int samples_per_luminaire = 8;  // direct light gathered: jittered points per area luminaire
+  // radiosity: direct light gathered at every vertex from the luminaires, only reflected light shot
+  // (Wallace, Elmquist & Haines 1989); false: the luminaires shoot their light too (the paper's way)
+  bool gather_direct = true;
+  // with gathered direct light and a target: subdivide the dicing where direct light bends more than the
+  // target allows (compiler/lighting/light_refinement.hpp). Off unless asked: it multiplies the triangles
+  // the kiosk draws (the house: 6x) for still-image accuracy
+  bool refine = false;
   double rays_per_watt = 1000.0;       // radiosity: rays shot per watt of unshot power (expert override)
   std::optional<double> target_error;  // radiosity: the solver's estimated error to reach; sets the rays
   double residual = 0.01;              // radiosity: stop when unshot power < residual * emitted

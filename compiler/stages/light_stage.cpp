@@ -5,10 +5,17 @@
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <array>
+#include <atomic>
 #include <cstddef>
+#include <glm/geometric.hpp>
+#include <limits>
 #include <numbers>
 
 #include "common/hash.hpp"
+#include "common/parallel_for.hpp"
+#include "compiler/lighting/direct_light.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/work_budget.hpp"
@@ -25,6 +32,9 @@ constexpr double kPilotRays = 2e5;
 constexpr double kTargetMargin = 1.2;
 // A solve whose estimate is within this factor of the target is kept; beyond it one more solve is run.
 constexpr double kTargetSlack = 1.15;
+// A refined vertex finds its patch by a ray from this far in front of it (metres): above the float
+// rounding of bundle vertices, below any gap between surfaces.
+constexpr double kLocateOffset = 1e-3;
 
 template <typename T>
 std::uint64_t hash_vector(std::uint64_t h, const std::vector<T>& v) {
@@ -52,7 +62,8 @@ class LightStage final : public Stage {
                             l.rays_per_watt,
                             l.residual,
                             double(s.model.circuits.size()),
-                            l.target_error.value_or(0.0)};
+                            l.target_error.value_or(0.0),
+                            double(l.gather_direct)};
     h = hash_bytes(h, knobs, sizeof knobs);
     for (const auto& lum : s.model.luminaires) {  // what the bundle's records leave out
       const double shape[] = {double(lum.kind), lum.cone,       lum.exponent,
@@ -109,23 +120,130 @@ class LightStage final : public Stage {
     ro.threads = s.options.threads;
     ro.caster = s.config.lighting.ray_caster;
     std::string how = fmt::format("{:g} rays/W", ro.rays_per_watt);
-    const RadiosityResult r =
+    // Gathered direct light: per vertex as the display shows it, per patch (its corners' mean) as the
+    // light the solver shoots on.
+    std::vector<double> vertex_direct, patch_direct;
+    DirectLightStats direct_stats;
+    std::string direct_note;
+    if (s.config.lighting.gather_direct) {
+      vertex_direct = gather_vertex_direct(s, &direct_stats);
+      patch_direct = patch_means(s.patches, vertex_direct, circuits * 3);
+      ro.gathered_direct = patch_direct;
+      direct_note = fmt::format("direct gathered ({} shadow rays), ", direct_stats.shadow_rays);
+    }
+    RadiosityResult r =
         s.config.lighting.target_error
             ? solve_to_target(s, emitters, points, circuits, ro, *s.config.lighting.target_error, how)
             : solve_radiosity(s.patches, emitters, points, circuits, ro);
-    out.light = vertex_radiosity(s.patches, r);
     out.polygon_light = polygon_radiosity(s.patches, r, out.polygons.size());
+    if (!vertex_direct.empty()) {
+      // The display: the direct light as gathered at its vertex plus the patches' shot light around it.
+      for (std::size_t i = 0; i < patch_direct.size(); ++i) r.radiosity[i] -= patch_direct[i];
+      out.light = vertex_radiosity(s.patches, r);
+      if (s.patches_coarser_than_display) {
+        const std::size_t lost = spread_to_refined_vertices(s, out.light, circuits * 3);
+        direct_note +=
+            fmt::format("shot light spread to refined vertices ({} off patches: nearest corner), ", lost);
+      }
+      for (std::size_t i = 0; i < out.light.size(); ++i) out.light[i] += static_cast<float>(vertex_direct[i]);
+    } else {
+      out.light = vertex_radiosity(s.patches, r);
+    }
     const auto& st = r.stats;
     auto outcome = StageOutcome::ran(
         s.patches.patches.size(), st.rays,
         fmt::format(
             "radiosity: {}, estimated error {:.2f}%; {} patches, {} circuits, {} rays in {} shots / {} "
-            "rounds, {:.2f} Mrays/s, residual {:.2f}%, absorbed {:.1f} W escaped {:.1f} W of {:.1f} W",
-            how, 100.0 * st.estimated_error, s.patches.patches.size(), circuits, st.rays, st.shots, st.rounds,
-            st.rays / st.seconds * 1e-6, 100.0 * st.unshot / st.emitted, st.absorbed, st.escaped,
-            st.emitted));
+            "rounds, {:.2f} Mrays/s, residual {:.2f}%, absorbed {:.1f} W escaped {:.1f} W of {:.1f} W shot",
+            direct_note + how, 100.0 * st.estimated_error, s.patches.patches.size(), circuits, st.rays,
+            st.shots, st.rounds, st.rays / st.seconds * 1e-6, 100.0 * st.unshot / st.emitted, st.absorbed,
+            st.escaped, st.emitted));
     outcome.estimated_error = st.estimated_error;
     return outcome;
+  }
+
+  // Direct light at every lit vertex (panels glow, so theirs stay 0), [vertex][circuit][channel].
+  static std::vector<double> gather_vertex_direct(CompileState& s, DirectLightStats* stats) {
+    const std::size_t k = s.model.circuits.size() * 3;
+    const TriangleBvh bvh(std::move(s.occluders));
+    const auto light = direct_light(s.samples, s.model.luminaires, s.model.circuits.size(), bvh,
+                                    {s.config.lighting.samples_per_luminaire, s.options.threads}, stats);
+    std::vector<double> out(s.out.vertices.size() * k, 0.0);
+    for (std::size_t i = 0; i < s.samples.size(); ++i)
+      std::copy_n(&light[i * k], k, &out[s.sample_vertex[i] * k]);
+    return out;
+  }
+
+  // Vertices the light refinement added are corners of no patch: they take the shot light interpolated
+  // over the patch they lie on, found by a short ray onto its front.
+  // Returns how many found no patch (they take their polygon's nearest corner's).
+  static std::size_t spread_to_refined_vertices(const CompileState& s, std::vector<float>& light,
+                                                std::size_t k) {
+    const PatchSet& set = s.patches;
+    std::vector<std::uint8_t> corner(set.vertices.size(), 0);
+    std::vector<Triangle> triangles;
+    for (std::uint32_t i = 0; i < set.patches.size(); ++i) {
+      const auto& p = set.patches[i];
+      for (const std::uint32_t v : p.v) corner[v] = 1;
+      triangles.push_back({set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]], i});
+    }
+    const TriangleBvh bvh(std::move(triangles));
+    std::vector<float> filled(light);
+    std::atomic<std::size_t> lost{0};
+    parallel_ranges(set.vertices.size(), 1024, s.options.threads, [&](std::size_t first, std::size_t last) {
+      for (std::size_t v = first; v < last; ++v) {
+        if (corner[v]) continue;
+        const auto& nv = s.out.vertices[v].normal;
+        const model::Vec3 n(nv[0], nv[1], nv[2]);
+        const auto hit = bvh.closest_facing(set.vertices[v] + n * kLocateOffset, -n, 0.0, 2.0 * kLocateOffset,
+                                            kLocateOffset * 1e-2);
+        if (!hit) {  // on a patch's edge, where the ray slipped between: the polygon's nearest corner
+          ++lost;
+          const auto& poly = s.out.polygons[s.out.vertices[v].polygon];
+          std::size_t nearest = v;
+          double best = std::numeric_limits<double>::infinity();
+          for (std::size_t u = poly.first_vertex; u < poly.first_vertex + poly.vertex_count; ++u) {
+            const model::Vec3 d = set.vertices[u] - set.vertices[v];
+            if (corner[u] && glm::dot(d, d) < best) {
+              best = glm::dot(d, d);
+              nearest = u;
+            }
+          }
+          std::copy_n(&light[nearest * k], k, &filled[v * k]);
+          continue;
+        }
+        const Patch& p = set.patches[bvh.triangles()[hit->triangle].polygon];
+        const auto w = barycentric(set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]],
+                                   set.vertices[v] + n * (kLocateOffset - hit->t));
+        for (std::size_t j = 0; j < k; ++j)
+          filled[v * k + j] = static_cast<float>(w[0] * light[p.v[0] * k + j] + w[1] * light[p.v[1] * k + j] +
+                                                 w[2] * light[p.v[2] * k + j]);
+      }
+    });
+    light = std::move(filled);
+    return lost.load();
+  }
+
+  // Weights of p (in the triangle's plane) at corners a, b, c, clamped into the triangle.
+  static std::array<double, 3> barycentric(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c,
+                                           const model::Vec3& p) {
+    const model::Vec3 e1 = b - a, e2 = c - a, d = p - a;
+    const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+    const double d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (!(det > 0.0)) return {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+    const double w1 = std::clamp((d22 * d1 - d12 * d2) / det, 0.0, 1.0);
+    const double w2 = std::clamp((d11 * d2 - d12 * d1) / det, 0.0, 1.0 - w1);
+    return {1.0 - w1 - w2, w1, w2};
+  }
+
+  static std::vector<double> patch_means(const PatchSet& patches, const std::vector<double>& per_vertex,
+                                         std::size_t k) {
+    std::vector<double> out(patches.patches.size() * k, 0.0);
+    for (std::size_t p = 0; p < patches.patches.size(); ++p)
+      for (const std::uint32_t v : patches.patches[p].v)
+        for (std::size_t j = 0; j < k; ++j) out[p * k + j] += per_vertex[v * k + j] / 3.0;
+    return out;
   }
 
   // Accuracy by target: a pilot solve small enough to cost little measures the error estimate, which falls
@@ -134,8 +252,16 @@ class LightStage final : public Stage {
   static RadiosityResult solve_to_target(const CompileState& s, std::span<const AreaEmitter> area,
                                          std::span<const PointEmitter> points, std::size_t circuits,
                                          RadiosityOptions ro, double target, std::string& how) {
+    // The power the solver shoots: the luminaires', or with direct light gathered the light it reflects.
     double watts = 0.0;
-    for (const auto& l : s.model.luminaires) watts += (l.power.r + l.power.g + l.power.b) / 3.0;
+    if (ro.gathered_direct.empty()) {
+      for (const auto& l : s.model.luminaires) watts += (l.power.r + l.power.g + l.power.b) / 3.0;
+    } else {
+      const std::size_t k = circuits * 3;
+      for (std::size_t p = 0; p < s.patches.patches.size(); ++p)
+        for (std::size_t j = 0; j < k; ++j)
+          watts += ro.gathered_direct[p * k + j] * s.patches.patches[p].area / 3.0;
+    }
     const double most = kMaxFirstRoundRays / std::max(watts, 1e-12);
     ro.rays_per_watt = std::min(most, kPilotRays / std::max(watts, 1e-12));
     RadiosityResult r = solve_radiosity(s.patches, area, points, circuits, ro);

@@ -10,6 +10,7 @@
 #include "compiler/geometry/coarse_mesh.hpp"
 #include "compiler/geometry/mesher.hpp"
 #include "compiler/geometry/t_junctions.hpp"
+#include "compiler/lighting/light_refinement.hpp"
 #include "compiler/scene/work_budget.hpp"
 #include "compiler/stages/stages.hpp"
 #include "compiler/textures/polygon_textures.hpp"
@@ -53,12 +54,46 @@ class MeshStage final : public Stage {
 
  private:
   // The dicing cell of a polygon's mesh: luminaire panels undiced, everything else on the lighting grid.
+  static bool refines_by_light(const CompileState& s) {
+    const auto& l = s.config.lighting;
+    return l.method == LightingMethod::Radiosity && l.gather_direct && l.refine && l.target_error &&
+           l.grid > 0.0 && !s.model.luminaires.empty();
+  }
+
+  // With a target error and gathered direct light, the diced meshes are subdivided further where the
+  // direct light bends more than the target allows (compiler/lighting/light_refinement.hpp).
+  static LightRefinementStats refine_by_light(
+      const CompileState& s, const std::vector<std::pair<const model::Polygon*, std::uint32_t>>& to_emit,
+      std::vector<PolygonMesh>& meshes) {
+    const auto& l = s.config.lighting;
+    if (!refines_by_light(s)) return {};
+    std::vector<bool> lit;
+    std::vector<Triangle> occluders;
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+      lit.push_back(to_emit[i].second == kNoLuminaire);  // panels glow; they are no receivers or occluders
+      if (!lit.back()) continue;
+      const auto& m = meshes[i];
+      for (std::size_t t = 0; t + 2 < m.triangles.size(); t += 3)
+        occluders.push_back({m.vertices[m.triangles[t]], m.vertices[m.triangles[t + 1]],
+                             m.vertices[m.triangles[t + 2]], static_cast<std::uint32_t>(i)});
+    }
+    const TriangleBvh bvh(std::move(occluders));
+    LightRefinementOptions o;
+    o.tolerance = *l.target_error;
+    o.min_edge = std::max(kMinGrid, l.grid / 16.0);
+    o.samples_per_luminaire = l.samples_per_luminaire;
+    o.threads = s.options.threads;
+    return refine_by_direct_light(meshes, lit, s.model.luminaires, bvh, o);
+  }
+
   double dice_size(const CompileState& s, const model::Polygon& poly) const {
     return poly.role == model::Role::Luminaire ? 0.0 : s.config.lighting.grid;
   }
   // Writes one polygon's diced mesh and coarse form into the bundle and the light stage's inputs.
+  // `solve`: the triangles the radiosity solver shoots between (the dicing before light refinement, whose
+  // vertices are the first of `mesh`'s), or `mesh` itself.
   void emit(CompileState& s, const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh,
-            const PolygonMesh& coarse);
+            const PolygonMesh& coarse, const PolygonMesh& solve);
 
   std::size_t coarse_fallbacks_ = 0;
   std::size_t coarse_unrepaired_ = 0;           // coarse forms drawn without their seam repair
@@ -66,7 +101,7 @@ class MeshStage final : public Stage {
 };
 
 void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t luminaire,
-                     const PolygonMesh& mesh, const PolygonMesh& coarse) {
+                     const PolygonMesh& mesh, const PolygonMesh& coarse, const PolygonMesh& solve) {
   auto& out = s.out;
   const double cell_size = dice_size(s, poly);
   if (mesh.triangles.empty()) return;
@@ -92,9 +127,9 @@ void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t 
   }
   const auto first_index = static_cast<std::uint32_t>(out.indices.size());
   for (std::uint32_t i : mesh.triangles) out.indices.push_back(first_vertex + i);
-  for (std::size_t i = 0; i + 2 < mesh.triangles.size(); i += 3)
-    s.patches.add(first_vertex + mesh.triangles[i], first_vertex + mesh.triangles[i + 1],
-                  first_vertex + mesh.triangles[i + 2], albedo, id);
+  for (std::size_t i = 0; i + 2 < solve.triangles.size(); i += 3)
+    s.patches.add(first_vertex + solve.triangles[i], first_vertex + solve.triangles[i + 1],
+                  first_vertex + solve.triangles[i + 2], albedo, id);
   model::PolygonRecord rec{};
   rec.first_index = first_index;
   rec.index_count = static_cast<std::uint32_t>(mesh.triangles.size());
@@ -126,9 +161,10 @@ void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t 
     out.coarse_indices.push_back(first_vertex + i);
   out.coarse_ranges.back().index_count =
       static_cast<std::uint32_t>(out.coarse_indices.size()) - out.coarse_ranges.back().first_index;
-  // Shadow-ray occluders for the direct method only (radiosity casts against its own patches), from the
+  // Shadow-ray occluders for gathered direct light (radiosity shoots against its own patches), from the
   // coarse triangulation: fewer triangles, same surface.
-  if (drawn(poly.role) && s.config.lighting.method == LightingMethod::Direct) {
+  if (drawn(poly.role) &&
+      (s.config.lighting.method == LightingMethod::Direct || s.config.lighting.gather_direct)) {
     for (std::size_t i = 0; i + 2 < coarse.triangles.size(); i += 3)
       s.occluders.push_back({coarse.vertices[coarse.triangles[i]], coarse.vertices[coarse.triangles[i + 1]],
                              coarse.vertices[coarse.triangles[i + 2]], id});
@@ -159,6 +195,13 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
   std::vector<PolygonMesh> meshes;
   meshes.reserve(to_emit.size());
   for (const auto& [poly, luminaire] : to_emit) meshes.push_back(mesh_polygon(*poly, dice_size(s, *poly)));
+  // Refinement only appends vertices, and so does the seam repair below: the dicing's vertices stay the
+  // first of each mesh, so its triangles still index the refined mesh's vertices.
+  std::vector<PolygonMesh> diced;
+  if (refines_by_light(s)) diced = meshes;
+  const LightRefinementStats refined = refine_by_light(s, to_emit, meshes);
+  if (refined.edges_split == 0) diced.clear();
+  s.patches_coarser_than_display = !diced.empty();
   // Seams between polygons diced apart: vertices that lie on a neighbour's edge within the weld distance
   // become vertices of that edge too, so float rounding cannot open a crack along a slanted seam.
   const TJunctionStats seams = repair_t_junctions(meshes, s.weld_tolerance);
@@ -175,17 +218,19 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
   }
   for (std::size_t i = 0; i < to_emit.size(); ++i)
     emit(s, *to_emit[i].first, to_emit[i].second, meshes[i],
-         coarse_meshes.empty() ? meshes[i] : coarse_meshes[i]);
+         coarse_meshes.empty() ? meshes[i] : coarse_meshes[i], diced.empty() ? meshes[i] : diced[i]);
   add_polygon_textures(s.model, emitted_, out);
   return StageOutcome::ran(
       s.model.polygons.size() + panels.size(), out.polygons.size(),
-      fmt::format("{} vertices {} triangles grid {} m; coarse {} triangles ({} polygons kept diced); "
+      fmt::format("{} vertices {} triangles grid {} m; light refinement {} of {} edges split in {} levels "
+                  "({} shadow rays); coarse {} triangles ({} polygons kept diced); "
                   "T-junctions {} vertices into {} triangles (coarse {} into {}, {} left unrepaired); "
                   "textures {} ({} MiB)",
-                  out.vertices.size(), out.indices.size() / 3, s.config.lighting.grid,
-                  out.coarse_indices.size() / 3, coarse_fallbacks_, seams.vertices_inserted,
-                  seams.triangles_split, coarse_seams.vertices_inserted, coarse_seams.triangles_split,
-                  coarse_unrepaired_, out.textures.size(), out.texels.size() >> 20));
+                  out.vertices.size(), out.indices.size() / 3, s.config.lighting.grid, refined.edges_split,
+                  refined.edges_tested, refined.levels, refined.shadow_rays, out.coarse_indices.size() / 3,
+                  coarse_fallbacks_, seams.vertices_inserted, seams.triangles_split,
+                  coarse_seams.vertices_inserted, coarse_seams.triangles_split, coarse_unrepaired_,
+                  out.textures.size(), out.texels.size() >> 20));
 }
 
 }  // namespace

@@ -40,6 +40,9 @@ struct CompileState {
   std::vector<Triangle> occluders;                                      // direct lighting's shadow casters
   std::vector<std::pair<std::uint32_t, std::uint32_t>> panel_polygons;  // (bundle polygon, luminaire)
   PatchSet patches;  // vertices numbered as the bundle's, in double precision
+  // The patches are the dicing before light refinement: bundle vertices the refinement added are corners
+  // of no patch, and take their shot (indirect) light from the patch they lie on.
+  bool patches_coarser_than_display = false;
   CompactLight compact;
 };
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/geometric.hpp>
+#include <numbers>
 #include <numeric>
 
 #include "compiler/geometry/mesher.hpp"
@@ -154,6 +156,48 @@ TEST(Radiosity, Cie171CubeMeanIrradianceMatchesTheClosedForm) {
     EXPECT_NEAR(irradiance, expected, 0.02 * expected) << "rho " << rho;
     expect_energy_balance(result.stats);
   }
+}
+
+// The same cube with the source's direct light gathered (its closed form at each patch's corners, as the
+// light stage gathers it at vertices) and only reflected light shot: the mean is the same closed form, the
+// energy books balance over the injected power, and the estimate counts the shot light only.
+TEST(Radiosity, GatheredDirectLightGivesTheCie171MeanAndBalances) {
+  constexpr double kFlux = 10000.0, kSide = 4.0, kArea = 6.0 * kSide * kSide, kRho = 0.5;
+  PatchSet set;
+  add_box(set, Vec3(0), Vec3(kSide), kRho, 0.5);
+  const Vec3 source(kSide / 2.0);
+  std::vector<double> direct;  // [patch][channel]: rho * I cos / r^2 averaged over the corners
+  for (const auto& p : set.patches) {
+    double e = 0.0;
+    for (const std::uint32_t v : p.v) {
+      const Vec3 d = source - set.vertices[v];
+      const double r2 = glm::dot(d, d);
+      e += kFlux / (4.0 * std::numbers::pi) * glm::dot(p.normal, d) / std::sqrt(r2) / r2 / 3.0;
+    }
+    direct.insert(direct.end(), 3, kRho * e);
+  }
+  RadiosityOptions o;
+  o.rays_per_watt = 40.0;
+  o.residual = 1e-4;
+  o.gathered_direct = direct;
+  PointEmitter point;  // shoots nothing: its light is the gathered one
+  point.position = source;
+  point.power = model::Rgb(kFlux);
+  const auto r = solve_radiosity(set, {}, std::span<const PointEmitter>(&point, 1), 1, o);
+  const double irradiance = area_mean(set, r) / kRho;
+  const double expected = kFlux / (kArea * (1.0 - kRho));
+  std::printf("CIE 171 5.8 with gathered direct light: %.2f W/m2, closed form %.2f, estimate %.2f %%\n",
+              irradiance, expected, 100.0 * r.stats.estimated_error);
+  // The corner mean of a smooth 1/r^2 light over 0.5 m patches is within about 1 % of its area mean.
+  EXPECT_NEAR(irradiance, expected, 0.02 * expected);
+  // Injected: the reflected direct power, rho * flux (every ray of the source meets a wall).
+  EXPECT_NEAR(r.stats.emitted, kRho * kFlux, 0.02 * kRho * kFlux);
+  expect_energy_balance(r.stats);
+  EXPECT_EQ(r.stats.escaped, 0.0);
+  EXPECT_GT(r.stats.estimated_error, 0.0);
+  EXPECT_LT(r.stats.estimated_error, 0.2);
+  o.gathered_direct = std::span<const double>(direct.data(), direct.size() - 3);
+  EXPECT_THROW((void)solve_radiosity(set, {}, {}, 1, o), std::invalid_argument) << "one value short";
 }
 
 // Irradiance at (px, py, 0) from a Lambertian rectangle [x0, x1] x [y0, y1] at height h facing down, per unit

@@ -40,6 +40,20 @@ class SceneConfigTest : public ::testing::Test {
   std::string path_;
 };
 
+TEST_F(SceneConfigTest, DirectLightIsGatheredUnlessToldAndRefinedOnlyWhenAsked) {
+  const std::string head = "[model]\nfile = \"a.obj\"\n";
+  const auto plain = load_scene_config(write(head));
+  EXPECT_TRUE(plain.lighting.gather_direct);
+  EXPECT_FALSE(plain.lighting.refine);
+  const auto shot = load_scene_config(write(head + "[lighting]\ndirect = \"shoot\"\nrefine = true\n"));
+  EXPECT_FALSE(shot.lighting.gather_direct);
+  EXPECT_TRUE(shot.lighting.refine);
+  const std::string way = error_of(head + "[lighting]\ndirect = \"both\"\n");
+  EXPECT_NE(way.find("lighting.direct"), std::string::npos) << way;
+  EXPECT_NE(way.find("known: gather, shoot"), std::string::npos) << way;
+  EXPECT_NE(error_of(head + "[lighting]\nrefine = \"yes\"\n").find("lighting.refine"), std::string::npos);
+}
+
 TEST_F(SceneConfigTest, StartIsInModelUnitsAndOptional) {
   const auto none = load_scene_config(write("[model]\nfile = \"a.dxf\"\nunits = \"m\"\n"));
   EXPECT_FALSE(none.start.has_value());

@@ -1,0 +1,41 @@
+#pragma once
+// Adaptive subdivision of diced meshes where direct light bends (Cohen, Greenberg, Immel & Brock 1986's
+// adaptive subdivision, tested on edges): the display interpolates light linearly between vertices, so an
+// edge whose midpoint's gathered direct light differs from the mean of its ends by more than the tolerance
+// is split there, and its triangles with it, until every edge passes or reaches the shortest length. Light
+// resolution then follows the light (shadow edges, the falloff next to a lamp), not the dicing grid.
+#include <cstddef>
+#include <vector>
+
+#include "compiler/geometry/mesher.hpp"
+#include "compiler/raycast/triangle_bvh.hpp"
+#include "model/model.hpp"
+
+namespace walk::compiler {
+
+struct LightRefinementOptions {
+  // Relative to the RMS direct irradiance over the meshes' vertices: the interpolation error allowed at
+  // an edge's midpoint (the scene's target_error).
+  double tolerance = 0.05;
+  double min_edge = 0.02;  // metres: edges this short are never split
+  int max_levels = 4;      // each level halves the edges it splits
+  int samples_per_luminaire = 8;
+  unsigned threads = 2;
+};
+
+struct LightRefinementStats {
+  std::size_t edges_tested = 0;
+  std::size_t edges_split = 0;
+  std::size_t triangles_added = 0;
+  int levels = 0;
+  double shadow_rays = 0.0;
+};
+
+// Refines `meshes[i]` for i where `lit[i]` (panels and the like are left alone); `occluders` cast the
+// shadows. Orientation is kept; a split triangle keeps its place with one piece, the others go to the end.
+LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, const std::vector<bool>& lit,
+                                            const std::vector<model::Luminaire>& luminaires,
+                                            const TriangleBvh& occluders,
+                                            const LightRefinementOptions& options);
+
+}  // namespace walk::compiler
