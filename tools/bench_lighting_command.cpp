@@ -3,6 +3,7 @@
 // at fixed surface points is compared with a converged path-traced reference (compiler/lighting/
 // path_reference.hpp), and the reference itself is timed at a range of paths per point: the two ways of
 // buying accuracy side by side, as CSV and a log-log plot of error against seconds.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "compiler/lighting/path_reference.hpp"
+#include "compiler/lighting/stored_light.hpp"
 #include "compiler/pipeline.hpp"
 #include "model/bundle.hpp"
 #include "model/error.hpp"
@@ -29,7 +31,10 @@ struct Args {
                                   std::string(WALK_SOURCE_DIR) + "/config/scenes/house.toml"};
   std::vector<double> targets{0.2, 0.1, 0.05, 0.02};
   std::vector<int> paths{4, 16, 64, 256};
+  // "gather": gathered, dicing as the scene says; "gather-refined" / "gather-flat": refined or not
+  std::vector<std::string> direct{"gather", "shoot"};
   int points = 200;
+  int worst = 0;  // print this many points with the largest errors
   int reference_paths = 4096;
   unsigned threads = 2;
   std::string plot;
@@ -37,12 +42,14 @@ struct Args {
 
 // Relative RMS error of `values` (luminance) against the reference, the reference's own noise taken out in
 // quadrature; also that noise, relative to the same scale, and the ratio of the means (a bias, not noise).
+// Points the reference finds hidden are left out.
 struct Error {
   double measured = 0.0, reference_noise = 0.0, mean_ratio = 0.0;
 };
 Error error_against(const std::vector<double>& values, const compiler::PathReference& ref) {
   double diff = 0.0, scale = 0.0, noise = 0.0, sum = 0.0, sum_ref = 0.0;
   for (std::size_t i = 0; i < values.size(); ++i) {
+    if (ref.hidden[i]) continue;  // inside a solid or behind a lamp: no view shows it
     const double r = model::luminance_weight(ref.radiosity[i]);
     sum += values[i];
     sum_ref += r;
@@ -52,6 +59,30 @@ Error error_against(const std::vector<double>& values, const compiler::PathRefer
   }
   if (scale <= 0.0) return {};
   return {std::sqrt(std::max(0.0, diff - noise) / scale), std::sqrt(noise / scale), sum / sum_ref};
+}
+
+// Where the error comes from: the `count` points with the largest squared errors, on stderr beside the CSV.
+void print_worst(const std::string& what, const std::vector<compiler::SurfacePoint>& points,
+                 const std::vector<double>& values, const compiler::PathReference& ref, int count) {
+  auto squared = [&](std::size_t i) {
+    const double r = model::luminance_weight(ref.radiosity[i]);
+    return ref.hidden[i] ? 0.0 : (values[i] - r) * (values[i] - r);
+  };
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto x, auto y) { return squared(x) > squared(y); });
+  double total = 0.0;
+  for (const auto i : order) total += squared(i);
+  for (std::size_t j = 0; j < std::min<std::size_t>(std::size_t(count), order.size()) && total > 0.0; ++j) {
+    const auto i = order[j];
+    const auto& p = points[i];
+    std::fprintf(stderr,
+                 "  %s: point %zu at %.2f %.2f %.2f (local m) facing %.1f %.1f %.1f: reference %.3f, shown "
+                 "%.3f W/m2; %.1f%% of the squared error\n",
+                 what.c_str(), i, p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y,
+                 p.normal.z, model::luminance_weight(ref.radiosity[i]), values[i],
+                 100.0 * squared(i) / total);
+  }
 }
 
 int run(const Args& a) {
@@ -75,36 +106,52 @@ int run(const Args& a) {
     compiler::SceneConfig config = compiler::load_scene_config(scene_path);
     std::vector<compiler::SurfacePoint> points;
     std::unique_ptr<compiler::PathReference> reference;
-    for (const double target : a.targets) {
-      config.lighting.target_error = target;
-      const auto compiled = compiler::compile_scene(config, {a.threads});
-      const std::string path = (tmp / (scene + ".walk")).string();
-      model::write_bundle(path, compiled.bundle);
-      const auto bundle = model::Bundle::open(path);
-      if (!reference) {  // the geometry is the same at every target: one reference serves them all
-        points = compiler::surface_points(*bundle, a.points);
-        const compiler::PathTracer tracer(*bundle);
-        reference =
-            std::make_unique<compiler::PathReference>(tracer.trace(points, a.reference_paths, 1, a.threads));
-        for (const int paths : a.paths) {
-          const auto r = tracer.trace(points, paths, 2 + paths, a.threads);
-          std::vector<double> values;
-          for (const auto& v : r.radiosity) values.push_back(model::luminance_weight(v));
-          row(scene, "reference", paths, r.rays, r.seconds, 0.0, error_against(values, *reference));
+    for (const std::string& way : a.direct) {
+      if (way != "gather" && way != "shoot" && way != "gather-flat" && way != "gather-refined")
+        throw walk::Error("walk bench lighting: --direct '" + way +
+                          "' is not gather, gather-refined, gather-flat or shoot");
+      compiler::SceneConfig scene_config = config;  // each way starts from the scene's own settings
+      scene_config.lighting.gather_direct = way != "shoot";
+      if (way != "gather") scene_config.lighting.refine = way == "gather-refined";
+      const std::string method = "walk-" + way;
+      for (const double target : a.targets) {
+        scene_config.lighting.target_error = target;
+        const auto compiled = compiler::compile_scene(scene_config, {a.threads});
+        const std::string path = (tmp / (scene + ".walk")).string();
+        model::write_bundle(path, compiled.bundle);
+        const auto bundle = model::Bundle::open(path);
+        if (!reference) {  // the surfaces are the same at every target: one reference serves them all
+          points = compiler::surface_points(*bundle, a.points);
+          const compiler::PathTracer tracer(*bundle);
+          reference = std::make_unique<compiler::PathReference>(
+              tracer.trace(points, a.reference_paths, 1, a.threads));
+          std::fprintf(
+              stderr, "%s: %zu of %zu points hidden (inside solids or behind lamps), left out\n",
+              scene.c_str(),
+              static_cast<std::size_t>(std::count(reference->hidden.begin(), reference->hidden.end(), 1)),
+              points.size());
+          for (const int paths : a.paths) {
+            const auto r = tracer.trace(points, paths, 2 + paths, a.threads);
+            std::vector<double> values;
+            for (const auto& v : r.radiosity) values.push_back(model::luminance_weight(v));
+            row(scene, "reference", paths, r.rays, r.seconds, 0.0, error_against(values, *reference));
+          }
         }
+        double seconds = 0.0, estimated = 0.0;
+        std::uint64_t rays = 0;
+        for (const auto& s : compiled.stages) {
+          if (s.name != "light") continue;
+          seconds = s.seconds;
+          rays = s.items_out;
+          estimated = s.estimated_error.value_or(0.0);
+        }
+        std::vector<double> values;
+        const compiler::StoredLight stored(*bundle);  // read by position: each target dices its own way
+        for (const auto& p : points)
+          values.push_back(model::luminance_weight(stored.on_surface(p.position, p.normal)));
+        row(scene, method.c_str(), target, rays, seconds, estimated, error_against(values, *reference));
+        print_worst(scene + " " + method, points, values, *reference, a.worst);
       }
-      double seconds = 0.0, estimated = 0.0;
-      std::uint64_t rays = 0;
-      for (const auto& s : compiled.stages) {
-        if (s.name != "light") continue;
-        seconds = s.seconds;
-        rays = s.items_out;
-        estimated = s.estimated_error.value_or(0.0);
-      }
-      std::vector<double> values;
-      for (const auto& p : points)
-        values.push_back(model::luminance_weight(compiler::displayed_radiosity(*bundle, p)));
-      row(scene, "walk", target, rays, seconds, estimated, error_against(values, *reference));
     }
   }
   fs::remove_all(tmp);
@@ -116,7 +163,9 @@ int run(const Args& a) {
     bool first = true;
     for (const auto& scene_path : a.scenes) {
       const std::string scene = fs::path(scene_path).stem().string();
-      for (const char* method : {"walk", "reference"}) {
+      std::vector<std::string> methods{"reference"};
+      for (const auto& way : a.direct) methods.push_back("walk-" + way);
+      for (const auto& method : methods) {
         commands << (first ? "" : ", ") << "'" << plot_data_path(a.plot) << "' using ((strcol(1) eq '"
                  << scene << "' && strcol(2) eq '" << method << "') ? $5 : 1/0):7 with linespoints title '"
                  << scene << " " << method << "'";
@@ -139,10 +188,16 @@ void add_bench_lighting_command(CLI::App& bench, int& exit_code) {
   cmd->add_option("--scenes", args->scenes, "Scene configs (default: the Cornell box and the house)")
       ->delimiter(',');
   cmd->add_option("--targets", args->targets, "target_error values to compile at")->delimiter(',');
+  cmd->add_option("--direct", args->direct,
+                  "Ways of direct light to compare: gather (refined as the scene says), gather-refined, "
+                  "gather-flat, shoot")
+      ->delimiter(',');
   cmd->add_option("--paths", args->paths, "Reference paths per point to time")->delimiter(',');
   cmd->add_option("--points", args->points, "Surface points compared")->check(CLI::Range(1, 1000000));
   cmd->add_option("--reference-paths", args->reference_paths, "Paths per point of the converged reference")
       ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--worst", args->worst, "Also print (stderr) this many points with the largest errors")
+      ->check(CLI::Range(0, 1000000));
   cmd->add_option("-j,--threads", args->threads, "Worker threads");
   cmd->add_option("--plot", args->plot, "Also write this PNG (and its CSV beside it) with gnuplot");
   cmd->callback([args, &exit_code] { exit_code = run(*args); });

@@ -13,7 +13,10 @@ namespace walk::compiler {
 
 using TriangleCorners = std::array<std::uint32_t, 3>;
 
-[[nodiscard]] std::vector<TriangleCorners> drawn_triangles(const model::Bundle& bundle);
+// `with_panels`: area luminaires' panels too (surfaces that reflect and block light like the rest; the
+// radiosity solver treats them so).
+[[nodiscard]] std::vector<TriangleCorners> drawn_triangles(const model::Bundle& bundle,
+                                                           bool with_panels = false);
 
 [[nodiscard]] inline model::Vec3 vertex_position(const model::VertexRecord& v) {
   return {v.position[0], v.position[1], v.position[2]};

@@ -73,25 +73,15 @@ std::vector<SurfacePoint> surface_points(const model::Bundle& b, std::size_t cou
     const auto it = std::lower_bound(cumulative.begin(), cumulative.end(), u01(rng) * total);
     const auto& c = triangles[std::min<std::size_t>(it - cumulative.begin(), triangles.size() - 1)];
     const double s = std::sqrt(u01(rng)), t = u01(rng);
-    SurfacePoint p{
-        {c[0], c[1], c[2]}, {1.0 - s, s * (1.0 - t), s * t}, model::Vec3(0.0), model::Vec3(0.0), {}};
-    for (int k = 0; k < 3; ++k) p.position += vertex_position(v[c[k]]) * p.weights[k];
+    SurfacePoint p{model::Vec3(0.0), model::Vec3(0.0), {}};
+    const double weights[3] = {1.0 - s, s * (1.0 - t), s * t};
+    for (int k = 0; k < 3; ++k) p.position += vertex_position(v[c[k]]) * weights[k];
     const auto& first = v[c[0]];
     p.normal = glm::normalize(vertex_normal(first));
     p.albedo = {first.albedo[0], first.albedo[1], first.albedo[2]};
     out.push_back(p);
   }
   return out;
-}
-
-model::Rgb displayed_radiosity(const model::Bundle& b, const SurfacePoint& p) {
-  const std::size_t circuits = b.circuits().size();
-  model::Rgb sum(0.0);
-  for (int k = 0; k < 3; ++k)
-    for (std::size_t c = 0; c < circuits; ++c)
-      for (int ch = 0; ch < 3; ++ch)
-        sum[ch] += p.weights[k] * b.light()[(p.corners[k] * circuits + c) * 3 + ch];
-  return sum;
 }
 
 struct PathTracer::Impl {
@@ -133,7 +123,9 @@ struct PathTracer::Impl {
       if (factor <= 0.0) return model::Rgb(0.0);
     }
     ++rays;
-    if (bvh->occluded(x, d, 0.0, 1.0)) return model::Rgb(0.0);
+    // Stop short of an area light's own panel, which is among the occluders.
+    const double reach = 1.0 - kOffset / std::max(std::sqrt(glm::dot(d, d)), 2.0 * kOffset);
+    if (bvh->occluded(x, d, 0.0, reach)) return model::Rgb(0.0);
     return l.power * (factor / p);
   }
 };
@@ -141,7 +133,8 @@ struct PathTracer::Impl {
 PathTracer::PathTracer(const model::Bundle& b) : impl_(std::make_unique<Impl>()) {
   std::vector<Triangle> triangles;
   const auto v = b.vertices();
-  for (const auto& c : drawn_triangles(b)) {  // panels glow, by next event
+  // Panels block and reflect as the solver's panels do; their glow comes by next event only.
+  for (const auto& c : drawn_triangles(b, true)) {
     const auto& a = v[c[0]];
     triangles.push_back({vertex_position(a), vertex_position(v[c[1]]), vertex_position(v[c[2]]),
                          static_cast<std::uint32_t>(impl_->normal.size())});
@@ -170,6 +163,7 @@ PathReference PathTracer::trace(const std::vector<SurfacePoint>& points, int pat
   PathReference out;
   out.radiosity.assign(points.size(), model::Rgb(0.0));
   out.standard_error.assign(points.size(), 0.0);
+  out.hidden.assign(points.size(), 0);
   std::atomic<std::uint64_t> rays{0};
   const Impl& m = *impl_;
   parallel_ranges(points.size(), 1, threads, [&](std::size_t first, std::size_t last) {
@@ -179,6 +173,7 @@ PathReference PathTracer::trace(const std::vector<SurfacePoint>& points, int pat
       std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + i);
       model::Rgb sum(0.0);
       double sum_y = 0.0, sum_y2 = 0.0;
+      int backs = 0;
       for (int path = 0; path < paths_per_point; ++path) {
         model::Vec3 n = points[i].normal;
         model::Vec3 x = points[i].position + n * kOffset;
@@ -190,7 +185,10 @@ PathReference PathTracer::trace(const std::vector<SurfacePoint>& points, int pat
           const auto hit = m.bvh->closest_facing(x, dir, 0.0, 1e30, kTie);
           if (!hit) break;
           const std::uint32_t t = m.bvh->triangles()[hit->triangle].polygon;
-          if (glm::dot(dir, m.normal[t]) >= 0.0) break;  // the inside of a wall: dark
+          if (glm::dot(dir, m.normal[t]) >= 0.0) {  // the inside of a wall: dark
+            backs += depth == 0;
+            break;
+          }
           throughput *= m.albedo[t];
           if (depth + 1 >= kSureBounces) {
             const double survive =
@@ -208,6 +206,7 @@ PathReference PathTracer::trace(const std::vector<SurfacePoint>& points, int pat
         sum_y2 += y * y;
       }
       out.radiosity[i] = sum / double(paths_per_point);
+      out.hidden[i] = 2 * backs > paths_per_point;
       const double mean = sum_y / paths_per_point;
       out.standard_error[i] =
           std::sqrt(std::max(0.0, sum_y2 / paths_per_point - mean * mean) / paths_per_point);

@@ -13,25 +13,24 @@
 
 namespace walk::compiler {
 
-// A point on a drawn triangle of the bundle, where both the display's light and the reference are read.
+// A point on a drawn surface of the bundle, where both the display's light (StoredLight::on_surface, so
+// bundles diced differently are read at the same points) and the reference are read.
 struct SurfacePoint {
-  std::uint32_t corners[3];  // VERT ids of its triangle
-  double weights[3];         // barycentric
-  model::Vec3 position;      // local metres
-  model::Vec3 normal;        // unit, the side the display shows
+  model::Vec3 position;  // local metres
+  model::Vec3 normal;    // unit, the side the display shows
   model::Rgb albedo;
 };
 
 // `count` points spread by area over the bundle's opaque and glass triangles, from a fixed seed.
 [[nodiscard]] std::vector<SurfacePoint> surface_points(const model::Bundle& bundle, std::size_t count);
 
-// What the display shows there: the vertex light of every circuit at full, interpolated (W/m2 per channel).
-[[nodiscard]] model::Rgb displayed_radiosity(const model::Bundle& bundle, const SurfacePoint& p);
-
 struct PathReference {
   std::vector<model::Rgb> radiosity;   // per point: albedo x irradiance, W/m2 per channel
   std::vector<double> standard_error;  // per point, of its luminance-weighted radiosity
-  std::uint64_t rays = 0;              // bounce and shadow rays cast
+  // Per point: most of its first bounces meet back faces, so it lies inside a solid or behind a lamp's
+  // panel, where no view sees it (a floor under a box): comparisons leave it out.
+  std::vector<std::uint8_t> hidden;
+  std::uint64_t rays = 0;  // bounce and shadow rays cast
   double seconds = 0.0;
 };
 

@@ -8,7 +8,7 @@
 
 #include "common/parallel_for.hpp"
 #include "compiler/lighting/direct_light.hpp"
-#include "compiler/lighting/drawn_triangles.hpp"
+#include "compiler/lighting/stored_light.hpp"
 #include "compiler/radiosity/sampling.hpp"
 #include "compiler/raycast/triangle_bvh.hpp"
 #include "model/error.hpp"
@@ -21,8 +21,6 @@ namespace {
 // Indirect rays start this far off the meter's face (metres), as the direct light's shadow rays do: far
 // above round-off at building scale, below any real gap.
 constexpr double kRayOffset = 1e-4;
-// Coincident back-to-back walls: hits within this (metres) go to the face looking back at the ray.
-constexpr double kTieDistance = 1e-6;
 
 model::Vec3 unit(const model::Vec3& v, const char* what) {
   const double len = std::sqrt(glm::dot(v, v));
@@ -31,65 +29,23 @@ model::Vec3 unit(const model::Vec3& v, const char* what) {
   return v / len;
 }
 
-// Radiosity per circuit and channel where a ray from `origin` along `dir` first meets a surface's front,
-// interpolated from its corners; false for a miss or a back face (the inside of a wall).
-bool radiosity_at_hit(const model::Bundle& b, const std::vector<TriangleCorners>& corners,
-                      const TriangleBvh& bvh, const model::Vec3& origin, const model::Vec3& dir,
-                      std::vector<double>& out, bool& back, double* distance = nullptr) {
-  back = false;
-  const auto hit = bvh.closest_facing(origin, dir, 0.0, 1e30, kTieDistance);
-  if (!hit) return false;
-  const Triangle& t = bvh.triangles()[hit->triangle];
-  const auto& c = corners[t.polygon];
-  if (glm::dot(dir, vertex_normal(b.vertices()[c[0]])) >= 0.0) {
-    back = true;
-    return false;
-  }
-  if (distance) *distance = hit->t * std::sqrt(glm::dot(dir, dir));
-  // Barycentric weights of the hit point in the triangle.
-  const model::Vec3 p = origin + dir * hit->t;
-  const model::Vec3 e1 = t.b - t.a, e2 = t.c - t.a, d = p - t.a;
-  const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-  const double d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
-  const double det = d11 * d22 - d12 * d12;
-  double w1 = det > 0.0 ? (d22 * d1 - d12 * d2) / det : 1.0 / 3.0;
-  double w2 = det > 0.0 ? (d11 * d2 - d12 * d1) / det : 1.0 / 3.0;
-  w1 = std::clamp(w1, 0.0, 1.0);
-  w2 = std::clamp(w2, 0.0, 1.0 - w1);
-  const double w[3] = {1.0 - w1 - w2, w1, w2};
-  const std::size_t k = b.circuits().size() * 3;
-  out.assign(k, 0.0);
-  for (int i = 0; i < 3; ++i)
-    for (std::size_t j = 0; j < k; ++j) out[j] += w[i] * b.light()[c[i] * k + j];
-  return true;
-}
-
 }  // namespace
 
 struct Probe::Impl {
   const model::Bundle& bundle;
-  std::vector<TriangleCorners> corners;  // per BVH triangle id
-  std::unique_ptr<TriangleBvh> bvh;
+  StoredLight stored;
   std::vector<model::Luminaire> luminaires;
 };
 
-Probe::Probe(const model::Bundle& b) : impl_(std::make_unique<Impl>(Impl{b, drawn_triangles(b), {}, {}})) {
-  std::vector<Triangle> triangles;
-  const auto v = b.vertices();
-  for (std::size_t i = 0; i < impl_->corners.size(); ++i) {
-    const auto& c = impl_->corners[i];
-    triangles.push_back({vertex_position(v[c[0]]), vertex_position(v[c[1]]), vertex_position(v[c[2]]),
-                         static_cast<std::uint32_t>(i)});
-  }
-  impl_->bvh = std::make_unique<TriangleBvh>(std::move(triangles));
-  impl_->luminaires = model::load_luminaires(b);
-}
+Probe::Probe(const model::Bundle& b)
+    : impl_(std::make_unique<Impl>(Impl{b, StoredLight(b), model::load_luminaires(b)})) {}
 
 Probe::~Probe() = default;
 
 ProbeResult Probe::read(const ProbeOptions& o) const {
   const model::Bundle& b = impl_->bundle;
-  const TriangleBvh& bvh = *impl_->bvh;
+  const StoredLight& stored = impl_->stored;
+  const TriangleBvh& bvh = stored.bvh();
   const auto& m = b.meta();
   const model::Vec3 origin_world(m.origin[0], m.origin[1], m.origin[2]);
   if (!std::isfinite(glm::dot(o.at, o.at))) throw Error("walk probe: --at must be a finite point");
@@ -123,7 +79,7 @@ ProbeResult Probe::read(const ProbeOptions& o) const {
         u2 = ((i / side) + u2) / side;
       }
       bool back = false;
-      if (!radiosity_at_hit(b, impl_->corners, bvh, start, cosine_direction(n, u1, u2), radiosity, back)) {
+      if (!stored.along_ray(start, cosine_direction(n, u1, u2), radiosity, back)) {
         backs[i] = back;
         continue;
       }
@@ -150,7 +106,7 @@ ProbeResult Probe::read(const ProbeOptions& o) const {
     std::vector<double> radiosity;
     bool back = false;
     double distance = 0.0;
-    if (radiosity_at_hit(b, impl_->corners, bvh, at, unit(*o.look, "--look"), radiosity, back, &distance)) {
+    if (stored.along_ray(at, unit(*o.look, "--look"), radiosity, back, &distance)) {
       r.look_distance = distance;
       // A diffuse surface of radiosity B has luminance B / pi.
       for (std::size_t c = 0; c < circuits; ++c)
