@@ -11,6 +11,7 @@ void add_render_command(CLI::App& app, int& exit_code);
 void add_verify_command(CLI::App& app, int& exit_code);
 // `walk probe`: illuminance at a point, per circuit (compiler/lighting/probe.hpp).
 void add_probe_command(CLI::App& app, int& exit_code);
+void add_export_command(CLI::App& app, int& exit_code);
 // `walk gen building`: scale-corpus scenes of the shared models' parts.
 void add_gen_command(CLI::App& app, int& exit_code);
 

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   walk::tools::add_render_command(app, exit_code);
   walk::tools::add_verify_command(app, exit_code);
   walk::tools::add_probe_command(app, exit_code);
+  walk::tools::add_export_command(app, exit_code);
   walk::tools::add_gen_command(app, exit_code);
   auto* bench = app.add_subcommand("bench", "Accuracy and speed sweeps, printed as CSV");
   bench->require_subcommand(1);
