@@ -47,9 +47,10 @@ struct LightingConfig {
   LightingMethod method = LightingMethod::Radiosity;
   double grid = 0.5;  // metres: patch edge length (the paper's 21 square-inch patches are about 0.12 m)
   int samples_per_luminaire = 8;  // direct light gathered: jittered points per area luminaire
-  // radiosity: direct light gathered at every vertex from the luminaires, only reflected light shot
-  // (Wallace, Elmquist & Haines 1989); false: the luminaires shoot their light too (the paper's way)
-  bool gather_direct = true;
+  // radiosity: direct light gathered from the luminaires, only reflected light shot (Wallace, Elmquist &
+  // Haines 1989); false (default): the luminaires shoot their light too (the paper's way). Gathered light
+  // wins against the path-traced reference only with `refine` (docs/RADIOSITY.md)
+  bool gather_direct = false;
   // with gathered direct light and a target: subdivide the dicing where direct light bends more than the
   // target allows (compiler/lighting/light_refinement.hpp). Off unless asked: it multiplies the triangles
   // the kiosk draws (the house: 6x) for still-image accuracy

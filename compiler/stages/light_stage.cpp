@@ -120,14 +120,20 @@ class LightStage final : public Stage {
     ro.threads = s.options.threads;
     ro.caster = s.config.lighting.ray_caster;
     std::string how = fmt::format("{:g} rays/W", ro.rays_per_watt);
-    // Gathered direct light: per vertex as the display shows it, per patch (its corners' mean) as the
-    // light the solver shoots on.
+    // Gathered direct light. On refined meshes: per vertex as the display shows it, per patch (its
+    // corners' mean) as the light the solver shoots on. Otherwise at each patch's centroid, shown like shot
+    // light (the area mean of the patches around a vertex): a vertex where a wall meets the floor, or
+    // just above a lamp's plane, is dark, and interpolating from it would darken the light around it.
     std::vector<double> vertex_direct, patch_direct;
     DirectLightStats direct_stats;
     std::string direct_note;
-    if (s.config.lighting.gather_direct) {
+    if (s.config.lighting.gather_direct && s.patches_coarser_than_display) {
       vertex_direct = gather_vertex_direct(s, &direct_stats);
       patch_direct = patch_means(s.patches, vertex_direct, circuits * 3);
+      ro.gathered_direct = patch_direct;
+      direct_note = fmt::format("direct gathered at vertices ({} shadow rays), ", direct_stats.shadow_rays);
+    } else if (s.config.lighting.gather_direct) {
+      patch_direct = gather_patch_direct(s, &direct_stats);
       ro.gathered_direct = patch_direct;
       direct_note = fmt::format("direct gathered ({} shadow rays), ", direct_stats.shadow_rays);
     }
@@ -235,6 +241,28 @@ class LightStage final : public Stage {
     const double w1 = std::clamp((d22 * d1 - d12 * d2) / det, 0.0, 1.0);
     const double w2 = std::clamp((d11 * d2 - d12 * d1) / det, 0.0, 1.0 - w1);
     return {1.0 - w1 - w2, w1, w2};
+  }
+
+  // Direct light at each patch's centroid (panels glow, so theirs stay 0), [patch][circuit][channel].
+  static std::vector<double> gather_patch_direct(CompileState& s, DirectLightStats* stats) {
+    const std::size_t k = s.model.circuits.size() * 3;
+    std::vector<std::uint8_t> panel(s.out.polygons.size(), 0);
+    for (const auto& [polygon, luminaire] : s.panel_polygons) panel[polygon] = 1;
+    std::vector<SurfaceSample> samples;
+    std::vector<std::uint32_t> patch_of;
+    for (std::uint32_t i = 0; i < s.patches.patches.size(); ++i) {
+      const Patch& p = s.patches.patches[i];
+      if (p.polygon < panel.size() && panel[p.polygon]) continue;
+      const auto& v = s.patches.vertices;
+      samples.push_back({(v[p.v[0]] + v[p.v[1]] + v[p.v[2]]) / 3.0, p.normal, p.reflectance});
+      patch_of.push_back(i);
+    }
+    const TriangleBvh bvh(std::move(s.occluders));
+    const auto light = direct_light(samples, s.model.luminaires, s.model.circuits.size(), bvh,
+                                    {s.config.lighting.samples_per_luminaire, s.options.threads}, stats);
+    std::vector<double> out(s.patches.patches.size() * k, 0.0);
+    for (std::size_t i = 0; i < samples.size(); ++i) std::copy_n(&light[i * k], k, &out[patch_of[i] * k]);
+    return out;
   }
 
   static std::vector<double> patch_means(const PatchSet& patches, const std::vector<double>& per_vertex,

@@ -136,6 +136,48 @@ TEST_F(ProbeTest, AMeterBehindAWallSaysSoAndALookReadsLuminance) {
   EXPECT_LT(looking.circuits[0].look_luminance, 80.0);
 }
 
+TEST_F(ProbeTest, GatheredDirectLightGivesTheSameCube) {
+  // The same cube with direct light gathered at the patches' centroids and only reflected light shot: the
+  // light shown, averaged over points spread by area, is the closed form rho flux / (S (1 - rho)) W/m2.
+  std::ifstream in(dir_ / "cube.toml");
+  const std::string scene((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(dir_ / "cube-gather.toml") << scene << "direct = \"gather\"\n";
+  std::vector<StageReport> stages;
+  ASSERT_TRUE(compile_to_file((dir_ / "cube-gather.toml").string(), (dir_ / "cube-gather.walk").string(),
+                              true, &stages));
+  const auto gathered = model::Bundle::open((dir_ / "cube-gather.walk").string());
+  const auto light =
+      std::find_if(stages.begin(), stages.end(), [](const auto& s) { return s.name == "light"; });
+  ASSERT_NE(light, stages.end());
+  EXPECT_NE(light->detail.find("direct gathered ("), std::string::npos) << light->detail;
+  const StoredLight stored(*gathered);
+  const auto points = surface_points(*gathered, 300);
+  double shown = 0.0;
+  for (const auto& p : points) shown += stored.on_surface(p.position, p.normal).g / points.size();
+  const double expected = kRho * kFlux / 179.0 / (6.0 * kSide * kSide * (1.0 - kRho));
+  std::printf("CIE cube, direct light gathered: shown %.4f, closed form %.4f W/m2\n", shown, expected);
+  EXPECT_NEAR(shown, expected, 0.03 * expected);
+}
+
+TEST_F(ProbeTest, TheReferenceFindsPointsNoViewSees) {
+  // Under the floor facing up, every first bounce meets the floor's back: hidden, left out of comparisons.
+  // Inside the cube facing up, and outside beside it facing away, no bounce meets a back face.
+  const PathTracer tracer(*bundle_);
+  const auto& m = bundle_->meta();
+  const model::Vec3 origin(m.origin[0], m.origin[1], m.origin[2]);  // the tracer works in local metres
+  const std::vector<SurfacePoint> points{
+      {model::Vec3(2, 2, -0.5) - origin, model::Vec3(0, 0, 1), model::Rgb(0.5)},
+      {model::Vec3(2, 2, 0.001) - origin, model::Vec3(0, 0, 1), model::Rgb(0.5)},
+      {model::Vec3(-0.5, 2, 2) - origin, model::Vec3(-1, 0, 0), model::Rgb(0.5)}};
+  const auto r = tracer.trace(points, 64, 3, 2);
+  ASSERT_EQ(r.hidden.size(), 3u);
+  EXPECT_EQ(r.hidden[0], 1);
+  EXPECT_EQ(r.hidden[1], 0);
+  EXPECT_EQ(r.hidden[2], 0);
+  EXPECT_GT(r.radiosity[1].g, 0.0);  // lit by the fixture and the walls
+  EXPECT_EQ(r.radiosity[2].g, 0.0);  // outside: nothing reaches it
+}
+
 TEST_F(ProbeTest, PathTracedReferenceAndDisplayedLightMatchTheClosedForm) {
   // The reference shares no code with the solver: over points spread by area, the mean radiosity is
   // rho E = rho flux / (S (1 - rho)), in W/m2 (the fixture's watts: 10,000 lm at 179 lm/W).

@@ -40,14 +40,14 @@ class SceneConfigTest : public ::testing::Test {
   std::string path_;
 };
 
-TEST_F(SceneConfigTest, DirectLightIsGatheredUnlessToldAndRefinedOnlyWhenAsked) {
+TEST_F(SceneConfigTest, DirectLightIsShotUnlessToldAndRefinedOnlyWhenAsked) {
   const std::string head = "[model]\nfile = \"a.obj\"\n";
   const auto plain = load_scene_config(write(head));
-  EXPECT_TRUE(plain.lighting.gather_direct);
+  EXPECT_FALSE(plain.lighting.gather_direct);
   EXPECT_FALSE(plain.lighting.refine);
-  const auto shot = load_scene_config(write(head + "[lighting]\ndirect = \"shoot\"\nrefine = true\n"));
-  EXPECT_FALSE(shot.lighting.gather_direct);
-  EXPECT_TRUE(shot.lighting.refine);
+  const auto gathered = load_scene_config(write(head + "[lighting]\ndirect = \"gather\"\nrefine = true\n"));
+  EXPECT_TRUE(gathered.lighting.gather_direct);
+  EXPECT_TRUE(gathered.lighting.refine);
   const std::string way = error_of(head + "[lighting]\ndirect = \"both\"\n");
   EXPECT_NE(way.find("lighting.direct"), std::string::npos) << way;
   EXPECT_NE(way.find("known: gather, shoot"), std::string::npos) << way;
