@@ -1,8 +1,9 @@
 #include "compiler/lighting/stored_light.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+
+#include "compiler/geometry/triangle_weights.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -38,17 +39,7 @@ bool StoredLight::along_ray(const model::Vec3& origin, const model::Vec3& dir, s
     return false;
   }
   if (distance) *distance = hit->t * std::sqrt(glm::dot(dir, dir));
-  // Barycentric weights of the hit point in the triangle.
-  const model::Vec3 p = origin + dir * hit->t;
-  const model::Vec3 e1 = t.b - t.a, e2 = t.c - t.a, d = p - t.a;
-  const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-  const double d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
-  const double det = d11 * d22 - d12 * d12;
-  double w1 = det > 0.0 ? (d22 * d1 - d12 * d2) / det : 1.0 / 3.0;
-  double w2 = det > 0.0 ? (d11 * d2 - d12 * d1) / det : 1.0 / 3.0;
-  w1 = std::clamp(w1, 0.0, 1.0);
-  w2 = std::clamp(w2, 0.0, 1.0 - w1);
-  const double w[3] = {1.0 - w1 - w2, w1, w2};
+  const auto w = triangle_weights(t.a, t.b, t.c, origin + dir * hit->t);
   const std::size_t k = bundle_.circuits().size() * 3;
   out.assign(k, 0.0);
   for (int i = 0; i < 3; ++i)

@@ -12,9 +12,11 @@
 #include <glm/geometric.hpp>
 #include <limits>
 #include <numbers>
+#include <span>
 
 #include "common/hash.hpp"
 #include "common/parallel_for.hpp"
+#include "compiler/geometry/triangle_weights.hpp"
 #include "compiler/lighting/direct_light.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
@@ -168,16 +170,23 @@ class LightStage final : public Stage {
     return outcome;
   }
 
-  // Direct light at every lit vertex (panels glow, so theirs stay 0), [vertex][circuit][channel].
-  static std::vector<double> gather_vertex_direct(CompileState& s, DirectLightStats* stats) {
+  // Direct light gathered at `samples` against the scene's shadow occluders (consumed: a compile gathers
+  // once), written at index[i] of a [count][circuit][3] array; what no sample lands on stays 0.
+  static std::vector<double> gather_direct(CompileState& s, std::span<const SurfaceSample> samples,
+                                           std::span<const std::uint32_t> index, std::size_t count,
+                                           DirectLightStats* stats) {
     const std::size_t k = s.model.circuits.size() * 3;
     const TriangleBvh bvh(std::move(s.occluders));
-    const auto light = direct_light(s.samples, s.model.luminaires, s.model.circuits.size(), bvh,
+    const auto light = direct_light(samples, s.model.luminaires, s.model.circuits.size(), bvh,
                                     {s.config.lighting.samples_per_luminaire, s.options.threads}, stats);
-    std::vector<double> out(s.out.vertices.size() * k, 0.0);
-    for (std::size_t i = 0; i < s.samples.size(); ++i)
-      std::copy_n(&light[i * k], k, &out[s.sample_vertex[i] * k]);
+    std::vector<double> out(count * k, 0.0);
+    for (std::size_t i = 0; i < samples.size(); ++i) std::copy_n(&light[i * k], k, &out[index[i] * k]);
     return out;
+  }
+
+  // Direct light at every lit vertex (panels glow, so theirs stay 0), [vertex][circuit][channel].
+  static std::vector<double> gather_vertex_direct(CompileState& s, DirectLightStats* stats) {
+    return gather_direct(s, s.samples, s.sample_vertex, s.out.vertices.size(), stats);
   }
 
   // Vertices the light refinement added are corners of no patch: they take the shot light interpolated
@@ -219,8 +228,8 @@ class LightStage final : public Stage {
           continue;
         }
         const Patch& p = set.patches[bvh.triangles()[hit->triangle].polygon];
-        const auto w = barycentric(set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]],
-                                   set.vertices[v] + n * (kLocateOffset - hit->t));
+        const auto w = triangle_weights(set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]],
+                                        set.vertices[v] + n * (kLocateOffset - hit->t));
         for (std::size_t j = 0; j < k; ++j)
           filled[v * k + j] = static_cast<float>(w[0] * light[p.v[0] * k + j] + w[1] * light[p.v[1] * k + j] +
                                                  w[2] * light[p.v[2] * k + j]);
@@ -230,22 +239,8 @@ class LightStage final : public Stage {
     return lost.load();
   }
 
-  // Weights of p (in the triangle's plane) at corners a, b, c, clamped into the triangle.
-  static std::array<double, 3> barycentric(const model::Vec3& a, const model::Vec3& b, const model::Vec3& c,
-                                           const model::Vec3& p) {
-    const model::Vec3 e1 = b - a, e2 = c - a, d = p - a;
-    const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-    const double d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
-    const double det = d11 * d22 - d12 * d12;
-    if (!(det > 0.0)) return {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
-    const double w1 = std::clamp((d22 * d1 - d12 * d2) / det, 0.0, 1.0);
-    const double w2 = std::clamp((d11 * d2 - d12 * d1) / det, 0.0, 1.0 - w1);
-    return {1.0 - w1 - w2, w1, w2};
-  }
-
   // Direct light at each patch's centroid (panels glow, so theirs stay 0), [patch][circuit][channel].
   static std::vector<double> gather_patch_direct(CompileState& s, DirectLightStats* stats) {
-    const std::size_t k = s.model.circuits.size() * 3;
     std::vector<std::uint8_t> panel(s.out.polygons.size(), 0);
     for (const auto& [polygon, luminaire] : s.panel_polygons) panel[polygon] = 1;
     std::vector<SurfaceSample> samples;
@@ -257,12 +252,7 @@ class LightStage final : public Stage {
       samples.push_back({(v[p.v[0]] + v[p.v[1]] + v[p.v[2]]) / 3.0, p.normal, p.reflectance});
       patch_of.push_back(i);
     }
-    const TriangleBvh bvh(std::move(s.occluders));
-    const auto light = direct_light(samples, s.model.luminaires, s.model.circuits.size(), bvh,
-                                    {s.config.lighting.samples_per_luminaire, s.options.threads}, stats);
-    std::vector<double> out(s.patches.patches.size() * k, 0.0);
-    for (std::size_t i = 0; i < samples.size(); ++i) std::copy_n(&light[i * k], k, &out[patch_of[i] * k]);
-    return out;
+    return gather_direct(s, samples, patch_of, s.patches.patches.size(), stats);
   }
 
   static std::vector<double> patch_means(const PatchSet& patches, const std::vector<double>& per_vertex,
@@ -315,12 +305,10 @@ class LightStage final : public Stage {
   static StageOutcome direct(CompileState& s) {
     auto& out = s.out;
     const std::size_t circuits = s.model.circuits.size();
-    const TriangleBvh bvh(std::move(s.occluders));
     DirectLightStats st;
-    const auto light = direct_light(s.samples, s.model.luminaires, circuits, bvh,
-                                    {s.config.lighting.samples_per_luminaire, s.options.threads}, &st);
-    for (std::size_t i = 0; i < s.samples.size(); ++i)
-      std::copy_n(&light[i * circuits * 3], circuits * 3, &out.light[s.sample_vertex[i] * circuits * 3]);
+    const auto light = gather_direct(s, s.samples, s.sample_vertex, out.vertices.size(), &st);
+    std::transform(light.begin(), light.end(), out.light.begin(),
+                   [](double b) { return static_cast<float>(b); });
     // Panels glow with their exitance Phi/A in their own circuit.
     for (const auto& [polygon, luminaire] : s.panel_polygons) {
       const auto& poly = out.polygons[polygon];
