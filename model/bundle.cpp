@@ -367,8 +367,17 @@ void Bundle::validate() {
     fail("PLGT must hold polygons*circuits*3 floats");
   for (float v : polygon_light_)
     if (!std::isfinite(v) || v < 0.0f) fail("PLGT holds a negative or non-finite radiosity");
-  for (const auto& c : circuits_)
-    if (!std::isfinite(c.compact_scale) || c.compact_scale < 0.0f) fail("CIRC compact scale is invalid");
+  for (std::size_t i = 0; i < circuits_.size(); ++i) {
+    const auto& c = circuits_[i];
+    const std::string name = "CIRC " + std::to_string(i);
+    if (!std::isfinite(c.compact_scale) || c.compact_scale < 0.0f) fail(name + " compact scale is invalid");
+    if (!std::isfinite(c.compact_error) || c.compact_error < 0.0f) fail(name + " compact error is invalid");
+    if (c.light_form != LightForm::Full && c.light_form != LightForm::Compact)
+      fail(name + " light form " + std::to_string(std::uint32_t(c.light_form)) +
+           " is neither full (0) nor compact (1)");
+    if (c.light_form == LightForm::Compact && compact_intensity_.empty())
+      fail(name + " is shown compact, but the bundle has no LCOL and LINT");
+  }
   if (indices_.size() % 3 != 0) fail("INDX is not a whole number of triangles");
   for (std::uint32_t i : indices_)
     if (i >= vertices_.size())

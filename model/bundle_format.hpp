@@ -8,7 +8,7 @@
 namespace walk::model {
 
 inline constexpr std::array<char, 8> kBundleMagic{'W', 'A', 'L', 'K', 'B', 'N', 'D', 'L'};
-inline constexpr std::uint32_t kBundleVersion = 3;  // 3: PVSL holds clusters (CLUS, CLPO)
+inline constexpr std::uint32_t kBundleVersion = 4;  // 4: CIRC says which light form each circuit is shown in
 inline constexpr std::uint64_t kSectionAlignment = 16;
 
 // Tags of the sections, as four ASCII bytes read as a little-endian integer.
@@ -80,11 +80,20 @@ struct GroupRecord {
   std::uint32_t name;
 };
 
+// How a circuit's light is shown: from the compact form (LCOL x LINT) where that is within the compiler's
+// limit for this circuit, else from LGHT. LGHT always holds every circuit in full (probes and benches read
+// it).
+enum class LightForm : std::uint32_t { Full = 0, Compact = 1 };
+
 struct CircuitRecord {
   std::uint32_t name;
   float default_level;
   float compact_scale = 0.0f;  // radiosity (W/m2) of compact intensity code 255, see LINT
+  LightForm light_form = LightForm::Full;
+  float compact_error =
+      0.0f;  // this circuit's relative RMS error in the compact form (error RMS / light RMS)
 };
+static_assert(sizeof(CircuitRecord) == 20);
 
 struct LuminaireRecord {
   float position[3];
@@ -238,8 +247,9 @@ inline constexpr std::uint32_t kLuminaireShapes = tag("LMSH");     // optional, 
 inline constexpr std::uint32_t kDistributions = tag("DIST");       // optional, see DistributionRecord
 inline constexpr std::uint32_t kDistributionValues = tag("DSTV");  // float
 inline constexpr std::uint32_t kLight = tag("LGHT");  // float RGB per vertex per circuit: [v][c][3]
-// The paper's compact light form, optional: u8 RGBA average colour per vertex, and u8 per vertex per circuit
-// (square-root coded against CircuitRecord::compact_scale). Radiosity = colour/255 * scale * (code/255)^2.
+// The paper's compact light form, optional: u8 RGBA average colour per vertex, and u8 per vertex per circuit,
+// coded logarithmically against CircuitRecord::compact_scale (model/compact_code.hpp). Radiosity =
+// colour/255 x scale x the code's value.
 inline constexpr std::uint32_t kCompactColour = tag("LCOL");
 inline constexpr std::uint32_t kCompactIntensity = tag("LINT");
 // Coarse display while moving, optional: float RGB per polygon per circuit, the area mean of its patches.

@@ -19,6 +19,7 @@
 #include "render/camera.hpp"
 #include "render/cluster_layout.hpp"
 #include "render/diagonals.hpp"
+#include "render/display_light.hpp"
 #include "render/draw_list.hpp"
 #include "render/framebuffer.hpp"
 #include "render/frustum.hpp"
@@ -34,6 +35,23 @@
 namespace walk::render {
 
 namespace {
+
+// Texture units of the compact light form (0: full light, 1: polygon light, 2 and 3: albedo maps).
+constexpr int kCompactColourUnit = 4;
+constexpr int kCompactCodeUnit = 5;
+
+// A texture buffer of `format` over a new buffer object holding `bytes` of `data` (at least 4 bytes, so an
+// empty one is still a valid texture).
+void upload_texture_buffer(GLuint& buffer, GLuint& texture, GLenum format, const void* data,
+                           std::size_t bytes) {
+  glGenBuffers(1, &buffer);
+  glBindBuffer(GL_TEXTURE_BUFFER, buffer);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr,
+               GL_STATIC_DRAW);
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_BUFFER, texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, format, buffer);
+}
 
 // The scene shaders' sources, with the albedo-map code only when the bundle has maps.
 std::string scene_source(const model::Bundle& bundle, const std::string& source, bool vertex_stage) {
@@ -55,11 +73,17 @@ struct ScenePass {
         u_inv_exposure(program.uniform("u_inv_exposure")),
         u_opacity(program.uniform("u_opacity")),
         u_polygon_light(glGetUniformLocation(program.id(), "u_polygon_light")),
+        // Absent from a program the GLSL compiler could prove never reads them: not an error either.
+        u_compact_colour(glGetUniformLocation(program.id(), "u_compact_colour")),
+        u_compact_code(glGetUniformLocation(program.id(), "u_compact_code")),
+        u_compact_count(glGetUniformLocation(program.id(), "u_compact_count")),
+        u_compact_levels(glGetUniformLocation(program.id(), "u_compact_levels[0]")),
         u_patch_weight(program.uniform("u_patch_weight")),
         u_clip_plane(program.uniform("u_clip_plane")) {}
   ShaderProgram program;
   GLint u_view_projection, u_light, u_circuit_count, u_levels, u_ambient, u_inv_exposure, u_opacity,
-      u_polygon_light, u_patch_weight, u_clip_plane;
+      u_polygon_light, u_compact_colour, u_compact_code, u_compact_count, u_compact_levels, u_patch_weight,
+      u_clip_plane;
 };
 
 struct Renderer::Impl {
@@ -76,7 +100,11 @@ struct Renderer::Impl {
   GLuint shaded_vao = 0, shaded_vbo = 0;
   GLsizei shaded_vertices = 0;
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_vbo = 0,
-         coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0;
+         coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0,
+         compact_colour_buffer = 0, compact_colour_texture = 0, compact_code_buffer = 0,
+         compact_code_texture = 0;
+  DisplayLight display_light;
+  std::vector<float> full_levels, compact_levels;  // this frame's levels split by light form
   // Both index forms laid out cluster by cluster (fine INDX; coarse CIDX, drawn with flat polygon light
   // while moving, empty when the bundle has none), and each cell's PVS as units of that layout.
   ClusterLayout layout;
@@ -139,8 +167,12 @@ struct Renderer::Impl {
   std::vector<std::uint32_t> refined_indices;  // INDX with colour-chosen diagonals
   bool restart = true;  // settings changed or draw() overwrote the picture: start again as if moved
 
-  explicit Impl(const model::Bundle& b) : bundle(b) {}
+  Impl(const model::Bundle& b, DisplayLightForm form) : bundle(b), display_light(b, form) {}
   ~Impl() {
+    glDeleteTextures(1, &compact_colour_texture);
+    glDeleteBuffers(1, &compact_colour_buffer);
+    glDeleteTextures(1, &compact_code_texture);
+    glDeleteBuffers(1, &compact_code_buffer);
     glDeleteTextures(1, &polygon_texture);
     glDeleteBuffers(1, &polygon_buffer);
     glDeleteTextures(1, &light_texture);
@@ -341,7 +373,8 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(bundle)) {
+Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
+    : impl_(std::make_unique<Impl>(bundle, light_form)) {
   auto& r = *impl_;
   const auto vertices = bundle.vertices();
   const std::size_t circuits = bundle.circuits().size();
@@ -355,8 +388,9 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
         " floats, expected vertices x circuits x 3 = " + std::to_string(vertices.size() * circuits * 3));
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  if (bundle.light().size() > std::size_t(max_texels))
-    throw Error("bundle '" + bundle.path() + "': " + std::to_string(bundle.light().size()) +
+  const std::size_t full_values = vertices.size() * r.display_light.full_circuits().size() * 3;
+  if (full_values > std::size_t(max_texels))
+    throw Error("bundle '" + bundle.path() + "': " + std::to_string(full_values) +
                 " radiosity values exceed this GL's texture buffer limit of " + std::to_string(max_texels) +
                 "; compile with fewer circuits or a coarser mesh");
 
@@ -424,14 +458,19 @@ Renderer::Renderer(const model::Bundle& bundle) : impl_(std::make_unique<Impl>(b
     glBindVertexArray(0);
   }
 
-  // Per-circuit radiosity, in LGHT's own layout; an empty buffer object still makes a valid texture.
-  glGenBuffers(1, &r.light_buffer);
-  glBindBuffer(GL_TEXTURE_BUFFER, r.light_buffer);
-  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<std::size_t>(bundle.light().size_bytes(), 4)),
-               bundle.light().empty() ? nullptr : bundle.light().data(), GL_STATIC_DRAW);
-  glGenTextures(1, &r.light_texture);
-  glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.light_buffer);
+  // Per-circuit radiosity of the circuits shown full, in LGHT's own layout (LGHT itself when all are), and
+  // the compact form of the others; an empty buffer object still makes a valid texture.
+  {
+    std::vector<float> packed;
+    const auto full = r.display_light.full_light(packed);
+    upload_texture_buffer(r.light_buffer, r.light_texture, GL_R32F, full.data(), full.size_bytes());
+    const auto codes = r.display_light.compact_codes();
+    const bool compact = !codes.empty();
+    const auto colours = bundle.compact_colour();
+    upload_texture_buffer(r.compact_code_buffer, r.compact_code_texture, GL_R8, codes.data(), codes.size());
+    upload_texture_buffer(r.compact_colour_buffer, r.compact_colour_texture, GL_RGBA8,
+                          compact ? colours.data() : nullptr, compact ? colours.size_bytes() : 0);
+  }
   r.polygon_light = polygon_light(bundle);
   glGenBuffers(1, &r.polygon_buffer);
   glBindBuffer(GL_TEXTURE_BUFFER, r.polygon_buffer);
@@ -644,9 +683,13 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     const ScenePass& pass = *r.pass;
     glUseProgram(pass.program.id());
     glUniformMatrix4fv(pass.u_view_projection, 1, GL_FALSE, &view_projection_matrix[0][0]);
-    glUniform1i(pass.u_circuit_count, GLint(r.levels.size()));
-    if (pass.u_levels >= 0 && !r.levels.empty())
-      glUniform1fv(pass.u_levels, GLsizei(r.levels.size()), r.levels.data());
+    r.display_light.split_levels(r.levels, r.full_levels, r.compact_levels);
+    glUniform1i(pass.u_circuit_count, GLint(r.full_levels.size()));
+    if (pass.u_levels >= 0 && !r.full_levels.empty())
+      glUniform1fv(pass.u_levels, GLsizei(r.full_levels.size()), r.full_levels.data());
+    if (pass.u_compact_count >= 0) glUniform1i(pass.u_compact_count, GLint(r.compact_levels.size()));
+    if (pass.u_compact_levels >= 0 && !r.compact_levels.empty())
+      glUniform1fv(pass.u_compact_levels, GLsizei(r.compact_levels.size()), r.compact_levels.data());
     glUniform1f(pass.u_ambient, meta.ambient);
     glUniform1f(pass.u_inv_exposure, 1.0f / r.exposure());
     glUniform1f(pass.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));
@@ -657,6 +700,12 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
     if (pass.u_polygon_light >= 0) glUniform1i(pass.u_polygon_light, 1);
+    glActiveTexture(GL_TEXTURE0 + kCompactColourUnit);
+    glBindTexture(GL_TEXTURE_BUFFER, r.compact_colour_texture);
+    if (pass.u_compact_colour >= 0) glUniform1i(pass.u_compact_colour, kCompactColourUnit);
+    glActiveTexture(GL_TEXTURE0 + kCompactCodeUnit);
+    glBindTexture(GL_TEXTURE_BUFFER, r.compact_code_texture);
+    if (pass.u_compact_code >= 0) glUniform1i(pass.u_compact_code, kCompactCodeUnit);
     glActiveTexture(GL_TEXTURE0);
     if (r.albedo_maps && r.pass == &r.full_pass) r.albedo_maps->bind();
     const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao : r.vao;
@@ -686,10 +735,10 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     }
     if (r.map_overlay) r.draw_map(view, width, height);
     glBindVertexArray(0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    for (const int unit : {kCompactCodeUnit, kCompactColourUnit, 1, 0}) {
+      glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+      glBindTexture(GL_TEXTURE_BUFFER, 0);
+    }
     if (r.albedo_maps) AlbedoMaps::unbind();
     glUseProgram(0);
   }
@@ -827,18 +876,11 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
 void Renderer::Impl::choose_diagonals() {
   if (quads.empty()) quads = find_quads(layout.fine.polygons, layout.fine.indices, bundle.vertices());
   const auto vertices = bundle.vertices();
-  const auto light = bundle.light();
-  const std::size_t circuits = levels.size();
   const float ambient = bundle.meta().ambient;
   std::vector<glm::vec3> colour(vertices.size());
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     const float* albedo = vertices[v].albedo;
-    glm::vec3 c = ambient * glm::vec3(albedo[0], albedo[1], albedo[2]);
-    for (std::size_t k = 0; k < circuits; ++k) {
-      const float* l = &light[(v * circuits + k) * 3];
-      c += levels[k] * glm::vec3(l[0], l[1], l[2]);
-    }
-    colour[v] = c;
+    colour[v] = ambient * glm::vec3(albedo[0], albedo[1], albedo[2]) + display_light.mixed(v, levels);
   }
   if (refined_indices.empty()) refined_indices = layout.fine.indices;
   stats.quads_flipped = std::uint32_t(render::choose_diagonals(quads, colour, refined_indices));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "model/bundle.hpp"
+#include "render/display_light.hpp"
 #include "render/governor.hpp"
 #include "render/gpu_timer.hpp"
 #include "render/refine_schedule.hpp"
@@ -89,7 +90,8 @@ class Renderer {
  public:
   // Uploads the bundle's buffers into the current context, which must stay current for every call and for
   // the destructor. The bundle must outlive the renderer. Throws walk::Error for more than 64 circuits.
-  explicit Renderer(const model::Bundle& bundle);
+  // `light_form`: each circuit in the form the compiler chose (compact where within its limit), or all full.
+  explicit Renderer(const model::Bundle& bundle, DisplayLightForm light_form = DisplayLightForm::AsCompiled);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

@@ -67,9 +67,10 @@ int inspect(const std::string& path, bool list) {
       double peak = 0.0;
       for (std::size_t v = 0; v < b->vertices().size(); ++v)
         peak = std::max<double>(peak, b->light()[(v * b->circuits().size() + c) * 3 + 1]);
-      std::printf("  %2zu %-24s default %.2f  peak B %.2f W/m2\n", c,
-                  std::string(b->string(b->circuits()[c].name)).c_str(), b->circuits()[c].default_level,
-                  peak);
+      const auto& r = b->circuits()[c];
+      std::printf("  %2zu %-24s default %.2f  peak B %.2f W/m2  shown %s (compact error %.2f%%)\n", c,
+                  std::string(b->string(r.name)).c_str(), r.default_level, peak,
+                  r.light_form == model::LightForm::Compact ? "compact" : "full", 100.0 * r.compact_error);
     }
     std::printf("rooms:\n");
     for (std::size_t g = 0; g < b->groups().size(); ++g)

@@ -1,6 +1,9 @@
 // compact: the light per vertex and circuit reduced to one colour and one intensity per circuit, the form the
-// kiosk mixes live; the error it makes is measured and printed.
+// kiosk mixes live where it is within kCompactErrorLimit per circuit; the others are shown full. Which and
+// why (each circuit's compact error) is printed.
 #include <spdlog/fmt/fmt.h>
+
+#include <algorithm>
 
 #include "compiler/stages/stages.hpp"
 
@@ -14,13 +17,34 @@ class CompactStage final : public Stage {
     auto& out = s.out;
     const std::size_t circuits = s.model.circuits.size();
     if (circuits == 0 || s.model.luminaires.empty()) return StageOutcome::skipped("no light to compact");
-    s.compact = compact_light(out.light, out.vertices.size(), circuits);
+    std::vector<std::uint8_t> glowing(out.vertices.size(), 0);  // luminaire panels
+    for (const auto& [polygon, luminaire] : s.panel_polygons) {
+      const auto& p = out.polygons[polygon];
+      std::fill_n(glowing.begin() + p.first_vertex, p.vertex_count, std::uint8_t(1));
+    }
+    s.compact = choose_light_forms(out.light, out.vertices.size(), circuits, glowing);
     out.compact_colour = s.compact.colour;
     out.compact_intensity = s.compact.intensity;
+    // Which circuits are shown full, and why: each one's error in the compact form.
+    std::string full;
+    std::size_t compact = 0;
+    for (std::size_t c = 0; c < circuits; ++c) {
+      if (s.compact.compact[c]) {
+        ++compact;
+        continue;
+      }
+      if (!full.empty()) full += ", ";
+      full += fmt::format("{} {:.1f}%", s.model.circuits[c].name, 100.0 * s.compact.circuit_rms[c]);
+    }
     return StageOutcome::ran(
-        out.light.size() * sizeof(float), s.compact.colour.size() * 4 + s.compact.intensity.size(),
-        fmt::format("error all on {:.2f}% RMS, worst circuit {:.2f}% RMS", 100.0 * s.compact.rms_error_all_on,
-                    100.0 * s.compact.worst_circuit_rms));
+        out.light.size() * sizeof(float),
+        out.vertices.size() * (4 + compact + (circuits - compact) * 3 * sizeof(float)),
+        fmt::format(
+            "{} of {} circuits compact (worst {:.2f}% RMS, limit {:.0f}%), shown error all on {:.2f}% "
+            "RMS{}",
+            compact, circuits, 100.0 * s.compact.worst_circuit_rms, 100.0 * kCompactErrorLimit,
+            100.0 * s.compact.rms_error_all_on,
+            full.empty() ? "" : "; full, compact would be off by: " + full));
   }
 };
 

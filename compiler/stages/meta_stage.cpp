@@ -55,9 +55,15 @@ class MetaStage final : public Stage {
       out.materials.push_back(
           {{float(m.reflectance.r), float(m.reflectance.g), float(m.reflectance.b)}, out.add_string(m.name)});
     for (const auto& g : model.groups) out.groups.push_back({out.add_string(g)});
-    for (std::size_t c = 0; c < circuits; ++c)
-      out.circuits.push_back({out.add_string(model.circuits[c].name), float(model.circuits[c].default_level),
-                              s.compact.scale.empty() ? 0.0f : s.compact.scale[c]});
+    for (std::size_t c = 0; c < circuits; ++c) {
+      model::CircuitRecord r{out.add_string(model.circuits[c].name), float(model.circuits[c].default_level)};
+      if (!s.compact.scale.empty()) {
+        r.compact_scale = s.compact.scale[c];
+        r.light_form = s.compact.compact[c] ? model::LightForm::Compact : model::LightForm::Full;
+        r.compact_error = static_cast<float>(s.compact.circuit_rms[c]);
+      }
+      out.circuits.push_back(r);
+    }
     return StageOutcome::ran(model.materials.size() + model.groups.size() + circuits,
                              out.materials.size() + out.groups.size() + out.circuits.size(),
                              fmt::format("exposure {:.4g}{}, {} materials, {} groups, {} circuits",

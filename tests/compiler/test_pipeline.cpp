@@ -10,6 +10,7 @@
 #include "compiler/pipeline.hpp"
 #include "compiler/radiosity/compact_light.hpp"
 #include "compiler/visibility/draw_order.hpp"
+#include "model/compact_code.hpp"
 #include "model/error.hpp"
 
 namespace walk::compiler {
@@ -157,12 +158,27 @@ TEST_F(PipelineTest, CompactLightIsStoredWithItsMeasuredError) {
   ASSERT_EQ(b.compact_colour.size(), b.vertices.size());
   ASSERT_EQ(b.compact_intensity.size(), b.vertices.size() * b.circuits.size());
   ASSERT_EQ(b.polygon_light.size(), b.polygons.size() * b.circuits.size() * 3);
-  // The compact form keeps the all-on picture within a few percent (one colour per vertex, 8-bit codes).
-  const CompactLight c = compact_light(b.light, b.vertices.size(), b.circuits.size());
+  // Each circuit is shown compact where its own error is within the limit, else full; the record says
+  // which and carries the error that decided it.
+  std::vector<std::uint8_t> glowing(b.vertices.size(), 0);  // the panels, left out of the errors
+  for (const auto& p : b.polygons)
+    if (p.role == std::uint32_t(model::Role::Luminaire))
+      std::fill_n(glowing.begin() + p.first_vertex, p.vertex_count, std::uint8_t(1));
+  const CompactLight c = choose_light_forms(b.light, b.vertices.size(), b.circuits.size(), glowing);
+  // Measured over the panels too, the error would be a fraction of it: their exitance swamps the walls'.
+  const CompactLight with_panels = choose_light_forms(b.light, b.vertices.size(), b.circuits.size());
+  EXPECT_LT(with_panels.rms_error_all_on, 0.5 * c.rms_error_all_on);
   EXPECT_LT(c.rms_error_all_on, 0.05);
   EXPECT_GT(c.rms_error_all_on, 0.0);  // lossy: a zero would mean the error is not measured
-  for (std::size_t i = 0; i < b.circuits.size(); ++i)
+  std::size_t compact = 0;
+  for (std::size_t i = 0; i < b.circuits.size(); ++i) {
     EXPECT_FLOAT_EQ(b.circuits[i].compact_scale, c.scale[i]);
+    EXPECT_FLOAT_EQ(b.circuits[i].compact_error, float(c.circuit_rms[i]));
+    const bool shown_compact = b.circuits[i].light_form == model::LightForm::Compact;
+    EXPECT_EQ(shown_compact, c.circuit_rms[i] <= kCompactErrorLimit) << i;
+    compact += shown_compact;
+  }
+  EXPECT_GT(compact, 0u);  // the house's circuits are white lamps: most are within the limit
   // And they reach the file the runtime maps.
   const std::string path = (dir_ / "compact.walk").string();
   model::write_bundle(path, b);
@@ -173,15 +189,87 @@ TEST_F(PipelineTest, CompactLightIsStoredWithItsMeasuredError) {
 }
 
 TEST(CompactLight, GreyLightOfOneCircuitRoundTripsWithinQuantisation) {
+  // From 50 W/m2 down to a millionth of it: the hot spot and the dim wall alike.
   std::vector<float> light;
-  for (int v = 0; v < 1000; ++v) light.insert(light.end(), 3, float(v) / 999.0f * 50.0f);
+  for (int v = 0; v < 1000; ++v) light.insert(light.end(), 3, 50.0f * std::pow(1e-6f, float(v) / 999.0f));
   const CompactLight c = compact_light(light, 1000, 1);
-  const auto back = expand_compact(c, 1000, 1);
+  const auto back = expand_compact(c, light, 1000, 1);
+  // Logarithmic coding: half a step is a ratio of 2^(8/254) (2.2 %) at every level down to 2^-16 of the
+  // scale; below that a value reads 0 or the smallest code's.
+  const double half_step = std::exp2(0.5 * model::kCompactStops / 254.0) - 1.0;
+  const double floor = 50.0 * std::exp2(-model::kCompactStops);
   for (std::size_t i = 0; i < light.size(); ++i) {
-    // Square-root coding: step at value x is about 2*sqrt(x*scale)/255; half a step is the worst error.
-    const double step = 2.0 * std::sqrt(light[i] * 50.0) / 255.0 + 50.0 / (255.0 * 255.0);
-    EXPECT_NEAR(back[i], light[i], 0.5 * step + 1e-4) << i;
+    if (light[i] >= floor)
+      EXPECT_NEAR(back[i], light[i], light[i] * half_step * 1.01 + 1e-6) << i;
+    else
+      EXPECT_LE(back[i], floor * 1.01) << i;
   }
+}
+
+TEST(CompactLight, CodesAreMonotoneAndRoundTrip) {
+  EXPECT_EQ(model::compact_code(0.0), 0);
+  EXPECT_EQ(model::compact_code(-1.0), 0);
+  EXPECT_EQ(model::compact_code(std::nan("")), 0);
+  EXPECT_EQ(model::compact_code(1.0), 255);
+  EXPECT_EQ(model::compact_code(2.0), 255);  // above the scale: clamped
+  EXPECT_EQ(model::compact_intensity(0), 0.0);
+  EXPECT_DOUBLE_EQ(model::compact_intensity(255), 1.0);
+  for (int k = 1; k < 256; ++k) {
+    EXPECT_EQ(model::compact_code(model::compact_intensity(std::uint8_t(k))), k);
+    if (k > 1) {
+      EXPECT_GT(model::compact_intensity(std::uint8_t(k)), model::compact_intensity(std::uint8_t(k - 1)));
+    }
+  }
+  // Far below code 1: nearer 0 than it.
+  EXPECT_EQ(model::compact_code(0.4 * model::compact_intensity(1)), 0);
+  EXPECT_EQ(model::compact_code(0.6 * model::compact_intensity(1)), 1);
+}
+
+// Two circuits over 500 vertices: a white one brightening along the row, and a red one that peaks where the
+// white one is dim. One colour per vertex cannot hold both tints.
+std::vector<float> white_and_red(std::size_t vertices) {
+  std::vector<float> light;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const float t = float(v) / float(vertices - 1);
+    light.insert(light.end(), {10.0f * t + 1.0f, 10.0f * t + 1.0f, 10.0f * t + 1.0f});  // circuit 0
+    light.insert(light.end(), {8.0f * (1.0f - t) + 0.5f, 0.2f, 0.2f});                  // circuit 1
+  }
+  return light;
+}
+
+TEST(CompactLight, ATintedCircuitIsShownFullAndTheOthersCompact) {
+  const std::size_t n = 500;
+  const auto light = white_and_red(n);
+  const CompactLight both = compact_light(light, n, 2);
+  EXPECT_GT(both.circuit_rms[1], kCompactErrorLimit);  // the shared colour misrepresents the red circuit
+  const CompactLight chosen = choose_light_forms(light, n, 2);
+  EXPECT_EQ(chosen.compact[0], 1);
+  EXPECT_EQ(chosen.compact[1], 0);
+  EXPECT_GT(chosen.circuit_rms[1], kCompactErrorLimit);  // the reason it is full, kept for the report
+  EXPECT_LE(chosen.circuit_rms[0], kCompactErrorLimit);
+  EXPECT_LT(chosen.circuit_rms[0], both.circuit_rms[0]);  // the colour now follows the white circuit only
+  EXPECT_EQ(chosen.worst_circuit_rms, chosen.circuit_rms[0]);
+  EXPECT_EQ(chosen.scale[1], 0.0f);
+  // Shown: the full circuit exactly as solved, the compact one within its error.
+  const auto shown = expand_compact(chosen, light, n, 2);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(shown[(v * 2 + 1) * 3 + ch], light[(v * 2 + 1) * 3 + ch]);
+  EXPECT_LT(chosen.rms_error_all_on, both.rms_error_all_on);
+}
+
+TEST(CompactLight, DarkAndUniformCircuitsStayCompact) {
+  const std::size_t n = 64;
+  std::vector<float> light;
+  for (std::size_t v = 0; v < n; ++v) {
+    light.insert(light.end(), {0.0f, 0.0f, 0.0f});                          // a circuit with no light here
+    light.insert(light.end(), {float(v + 1), float(v + 1), float(v + 1)});  // grey
+  }
+  const CompactLight c = choose_light_forms(light, n, 2);
+  EXPECT_EQ(c.compact[0], 1);
+  EXPECT_EQ(c.compact[1], 1);
+  EXPECT_EQ(c.circuit_rms[0], 0.0);
+  EXPECT_LT(c.circuit_rms[1], 0.02);  // quantisation only: 4.5 % steps, RMS about step / sqrt(12)
+  EXPECT_GT(c.circuit_rms[1], 0.0);
 }
 
 TEST_F(PipelineTest, BrokenModelLeavesNoBundle) {

@@ -93,6 +93,8 @@ TEST_F(BundleTest, OptionalLightFormsRoundTrip) {
   c.compact_intensity = {0, 10, 20, 30, 40, 50, 60, 255};
   c.polygon_light.assign(1 * 2 * 3, 0.75f);
   c.circuits[1].compact_scale = 12.5f;
+  c.circuits[1].light_form = LightForm::Compact;
+  c.circuits[1].compact_error = 0.031f;
   write_bundle(path_, c);
   const auto b = Bundle::open(path_);
   ASSERT_EQ(b->compact_colour().size(), 4u);
@@ -102,8 +104,21 @@ TEST_F(BundleTest, OptionalLightFormsRoundTrip) {
   ASSERT_EQ(b->polygon_light().size(), 6u);
   EXPECT_FLOAT_EQ(b->polygon_light()[5], 0.75f);
   EXPECT_FLOAT_EQ(b->circuits()[1].compact_scale, 12.5f);
+  EXPECT_EQ(b->circuits()[1].light_form, LightForm::Compact);
+  EXPECT_EQ(b->circuits()[0].light_form, LightForm::Full);
+  EXPECT_FLOAT_EQ(b->circuits()[1].compact_error, 0.031f);
 
-  c.compact_intensity.pop_back();  // one short: refused, naming the section
+  // A light form that is neither, and a compact circuit without the compact form: refused, naming it.
+  c.circuits[0].light_form = LightForm(7);
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("CIRC 0 light form 7"), std::string::npos) << open_error();
+  c.circuits[0].light_form = LightForm::Full;
+  c.compact_colour.clear();
+  c.compact_intensity.clear();
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("CIRC 1 is shown compact"), std::string::npos) << open_error();
+  c.compact_colour.assign(4, {200, 180, 160, 255});
+  c.compact_intensity = {0, 10, 20, 30, 40, 50, 60};  // one short: refused, naming the section
   write_bundle(path_, c);
   EXPECT_NE(open_error().find("LINT"), std::string::npos);
 }

@@ -153,11 +153,15 @@ model::BundleContents make_two_rooms(const TwoRooms& scene) {
 }
 
 std::unique_ptr<model::Bundle> open_two_rooms(const TwoRooms& scene, const std::string& name) {
+  return open_bundle(make_two_rooms(scene), name);
+}
+
+std::unique_ptr<model::Bundle> open_bundle(const model::BundleContents& contents, const std::string& name) {
   const auto dir =
       std::filesystem::temp_directory_path() / ("walk_render_tests_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string path = (dir / (name + ".walk")).string();
-  model::write_bundle(path, make_two_rooms(scene));
+  model::write_bundle(path, contents);
   return model::Bundle::open(path);
 }
 

@@ -45,6 +45,9 @@ struct TwoRooms {
 [[nodiscard]] model::BundleContents make_two_rooms(const TwoRooms& scene);
 // Writes the scene to a unique temporary file and opens it.
 [[nodiscard]] std::unique_ptr<model::Bundle> open_two_rooms(const TwoRooms& scene, const std::string& name);
+// Writes any contents the same way (a scene edited after make_two_rooms).
+[[nodiscard]] std::unique_ptr<model::Bundle> open_bundle(const model::BundleContents& contents,
+                                                         const std::string& name);
 
 // Expected 8-bit display value of a linear radiosity (W/m2) under `exposure`: clamp, sRGB encode, round.
 [[nodiscard]] int expected_byte(double radiosity, double exposure);

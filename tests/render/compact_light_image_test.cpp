@@ -1,0 +1,124 @@
+// The compact light form drawn (issue 26, item 5): circuits the compiler kept compact are drawn from the
+// paper's 8-bit form, the others from LGHT, and the picture matches the full form's within the display's
+// own steps while the light takes a fraction of the memory.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+#include "compiler/radiosity/compact_light.hpp"
+#include "render_test_support.hpp"
+#include "two_rooms.hpp"
+
+namespace walk::render::test {
+namespace {
+
+// The two rooms with a light gradient, circuit 1 a warm lamp (red tripled, blue halved): where both light,
+// one colour per vertex cannot hold both tints, so the compiler's choice keeps circuit 0 compact only.
+model::BundleContents warm_and_white() {
+  TwoRooms scene;
+  scene.subdivisions = 4;
+  scene.light_gradient = true;
+  model::BundleContents c = make_two_rooms(scene);
+  const std::size_t circuits = c.circuits.size();
+  for (std::size_t v = 0; v < c.vertices.size(); ++v) {
+    c.light[(v * circuits + 1) * 3 + 0] *= 3.0f;
+    c.light[(v * circuits + 1) * 3 + 2] *= 0.5f;
+  }
+  const auto chosen = compiler::choose_light_forms(c.light, c.vertices.size(), circuits);
+  c.compact_colour = chosen.colour;
+  c.compact_intensity = chosen.intensity;
+  for (std::size_t i = 0; i < circuits; ++i) {
+    c.circuits[i].compact_scale = chosen.scale[i];
+    c.circuits[i].light_form = chosen.compact[i] ? model::LightForm::Compact : model::LightForm::Full;
+    c.circuits[i].compact_error = float(chosen.circuit_rms[i]);
+  }
+  return c;
+}
+
+// Looking from room A into B through the opening: both rooms, both circuits in view.
+View both_rooms() {
+  View view = looking_along_x(+1.0, 1.0);
+  view.forward = {1.0, 0.15, -0.2};
+  return view;
+}
+
+class CompactLightImageTest : public ::testing::TestWithParam<BackendKind> {
+ protected:
+  void SetUp() override { backend_ = headless(GetParam()); }
+  Image frame(Renderer& renderer, std::vector<float> levels) {
+    renderer.set_dimmers(levels);
+    renderer.draw(both_rooms(), kWidth, kHeight);
+    return renderer.read_pixels(kWidth, kHeight);
+  }
+  std::unique_ptr<Backend> backend_;
+};
+
+// Largest difference of one channel between two frames, in 8-bit steps.
+int largest_difference(const Image& a, const Image& b) {
+  int worst = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i)
+    worst = std::max(worst, std::abs(int(a.rgba[i]) - int(b.rgba[i])));
+  return worst;
+}
+
+TEST_P(CompactLightImageTest, CompiledFormsMatchTheFullFormWithinTheDisplaysSteps) {
+  const auto contents = warm_and_white();
+  ASSERT_EQ(contents.circuits[0].light_form, model::LightForm::Compact);
+  ASSERT_EQ(contents.circuits[1].light_form, model::LightForm::Full);  // the warm lamp
+  const auto bundle = open_bundle(contents, "compact_forms");
+  const DisplayLight as_compiled(*bundle, DisplayLightForm::AsCompiled),
+      full(*bundle, DisplayLightForm::Full);
+  EXPECT_EQ(as_compiled.compact_circuits(), std::vector<std::uint32_t>{0});
+  EXPECT_EQ(as_compiled.full_circuits(), std::vector<std::uint32_t>{1});
+  EXPECT_TRUE(full.compact_circuits().empty());
+  // One float RGB (12 bytes) of the two circuits' 24 per vertex becomes 1 byte plus the shared colour.
+  EXPECT_EQ(as_compiled.gpu_bytes(), bundle->vertices().size() * (12 + 4 + 1));
+  EXPECT_EQ(full.gpu_bytes(), full.full_form_bytes());
+
+  Renderer compiled_renderer(*bundle), full_renderer(*bundle, DisplayLightForm::Full);
+  int worst = 0;
+  for (const std::vector<float>& levels :
+       {std::vector<float>{1.0f, 1.0f}, {1.0f, 0.0f}, {0.5f, 1.0f}, {0.0f, 1.0f}}) {
+    const Image a = frame(compiled_renderer, levels), b = frame(full_renderer, levels);
+    const int d = largest_difference(a, b);
+    // Circuit 0's compact error (well under kCompactErrorLimit here) plus a step of rounding each.
+    EXPECT_LE(d, 3) << "levels " << levels[0] << ", " << levels[1];
+    if (levels[0] == 0.0f) {
+      EXPECT_EQ(d, 0) << "only the full circuit is on: nothing compact is drawn";
+    }
+    worst = std::max(worst, d);
+  }
+  std::cout << "[ compact  ] circuit 0 compact (" << 100.0 * contents.circuits[0].compact_error
+            << "% RMS), circuit 1 full (" << 100.0 * contents.circuits[1].compact_error
+            << "% RMS if compact); largest pixel difference " << worst << " steps\n";
+}
+
+// The compact path is really what is drawn: doubling circuit 0's scale brightens its light on screen, and
+// the full form ignores it.
+TEST_P(CompactLightImageTest, TheShaderReadsTheCompactForm) {
+  auto contents = warm_and_white();
+  const auto bundle = open_bundle(contents, "compact_scale");
+  contents.circuits[0].compact_scale *= 2.0f;
+  const auto doubled = open_bundle(contents, "compact_scale_doubled");
+  Renderer a(*bundle), b(*doubled), full_a(*bundle, DisplayLightForm::Full),
+      full_b(*doubled, DisplayLightForm::Full);
+  const Image fa = frame(a, {1.0f, 0.0f}), fb = frame(b, {1.0f, 0.0f});
+  std::size_t brighter = 0, channels = 0;
+  for (std::size_t i = 0; i < fa.rgba.size(); ++i) {
+    if (i % 4 == 3 || fa.rgba[i] >= 250) continue;
+    ++channels;
+    brighter += fb.rgba[i] > fa.rgba[i] + 5;
+  }
+  EXPECT_GT(brighter, channels / 2) << brighter << " of " << channels;
+  EXPECT_EQ(largest_difference(frame(full_a, {1.0f, 0.0f}), frame(full_b, {1.0f, 0.0f})), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Headless, CompactLightImageTest,
+                         ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
+                         [](const auto& info) { return std::string(backend_kind_name(info.param)); });
+
+}  // namespace
+}  // namespace walk::render::test
