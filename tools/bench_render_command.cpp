@@ -1,6 +1,6 @@
 // walk bench render scene.toml|x.walk...: frame times at 1280x720 along a scripted walk, culled and unculled,
-// with the governor holding the target rate while moving, and what each refinement level and each
-// anti-aliasing sample count costs. One CSV table on stdout.
+// with the governor holding the target rate while moving, and what each refinement level, the compact light
+// form and each anti-aliasing sample count costs. One CSV table on stdout.
 #include <fmt/format.h>
 #include <glad/gl.h>
 #include <unistd.h>
@@ -356,6 +356,51 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
                       {},
                       "one view"});
       }
+    }
+    {
+      // The light as the compiler chose it per circuit (compact where within its limit) against every
+      // circuit full: frame time, display memory and image error, alternating view by view.
+      render::Renderer full_light(*bundle, render::DisplayLightForm::Full);
+      full_light.set_pvs_culling(true);
+      full_light.set_frustum_culling(true);
+      full_light.set_portal_culling(o.portals);
+      const render::DisplayLight as_compiled(*bundle, render::DisplayLightForm::AsCompiled);
+      std::vector<double> t_compiled, t_full;
+      ImageError error;
+      std::size_t views = 0;
+      for (std::size_t i = 0; i < walk.size(); i += kLevelViewStride, ++views) {
+        for (render::Renderer* r : {&renderer, &full_light}) {
+          const auto t0 = Clock::now();
+          r->draw(walk[i], width, height, full);
+          glFinish();
+          (r == &renderer ? t_compiled : t_full).push_back(ms_since(t0));
+          progress.advance();
+        }
+        const ImageError e =
+            image_error(renderer.read_pixels(width, height), full_light.read_pixels(width, height));
+        error.mae_linear += e.mae_linear;
+        error.over_2_percent += e.over_2_percent;
+      }
+      error.mae_linear /= double(std::max<std::size_t>(views, 1));
+      error.over_2_percent /= double(std::max<std::size_t>(views, 1));
+      const double mib = 1.0 / (1024.0 * 1024.0);
+      print(scene,
+            {"light", "as-compiled", t_compiled.size(), percentile(t_compiled, 0.5),
+             percentile(t_compiled, 0.99), 0, 0, error,
+             fmt::format("{} of {} circuits compact; light {:.1f} MiB of display memory; error against "
+                         "full",
+                         as_compiled.compact_circuits().size(), bundle->circuits().size(),
+                         double(as_compiled.gpu_bytes()) * mib)});
+      print(scene, {"light",
+                    "full",
+                    t_full.size(),
+                    percentile(t_full, 0.5),
+                    percentile(t_full, 0.99),
+                    0,
+                    0,
+                    {},
+                    fmt::format("every circuit from LGHT; light {:.1f} MiB",
+                                double(as_compiled.full_form_bytes()) * mib)});
     }
     const render::View still = walk[walk.size() / 2];
     for (int samples : {1, 4, 16, 64}) {
