@@ -37,7 +37,9 @@ class Output {
         refine_(display.refine),
         target_hz_(display.target_hz * views_in_frame),
         frame_timing_(render::parse_frame_timing(display.frame_timing).value_or(render::FrameTiming::Auto)),
-        white_radiosity_(white_radiosity(display)) {
+        white_radiosity_(white_radiosity(display)),
+        light_form_(display.light_form == "full" ? render::DisplayLightForm::Full
+                                                 : render::DisplayLightForm::AsCompiled) {
     render::BackendOptions options;
     options.kind = render::parse_backend_kind(display.backend);
     options.width = display.width;
@@ -152,7 +154,8 @@ class Output {
       if (columns != views)
         r.present.buffer = i % 2 ? render::WindowBuffer::BackRight : render::WindowBuffer::BackLeft;
     }
-    while (renderers_.size() < views) renderers_.push_back(std::make_unique<render::Renderer>(bundle_));
+    while (renderers_.size() < views)
+      renderers_.push_back(std::make_unique<render::Renderer>(bundle_, light_form_));
     renderers_.resize(views);
     for (std::size_t i = 0; i < views; ++i) {
       auto& r = *renderers_[i];
@@ -171,6 +174,7 @@ class Output {
   double target_hz_;  // the frame rate times the views drawn on the other outputs
   render::FrameTiming frame_timing_;
   std::optional<float> white_radiosity_;  // [display] white_luminance as radiosity (W/m2); none: the bundle's
+  render::DisplayLightForm light_form_;   // [display] light_form
   bool quad_requested_ = false, quad_buffer_ = false, drew_ = false;
   std::unique_ptr<render::Backend> backend_;
   std::vector<std::unique_ptr<render::Renderer>> renderers_;

@@ -130,9 +130,10 @@ KioskConfig load_kiosk_config(const std::string& path) {
   }
 
   if (auto s = top.table("display")) {
-    s->only({"mode", "screen", "screens", "outputs", "stereo", "eye_separation", "nominal_eye",
-             "tracking_ease", "backend", "width", "height", "fullscreen", "monitor", "drm_device",
-             "fov_y_deg", "refine", "target_hz", "frame_timing", "white_luminance"});
+    s->only({"mode",           "screen",      "screens",       "outputs",         "stereo",
+             "eye_separation", "nominal_eye", "tracking_ease", "backend",         "width",
+             "height",         "fullscreen",  "monitor",       "drm_device",      "fov_y_deg",
+             "refine",         "target_hz",   "frame_timing",  "white_luminance", "light_form"});
     c.display.mode = s->string("mode").value_or(c.display.mode);
     if (c.display.mode != "screen" && c.display.mode != "hmd")
       s->fail("mode",
@@ -176,6 +177,11 @@ KioskConfig load_kiosk_config(const std::string& path) {
     c.display.target_hz = s->number("target_hz", c.display.target_hz, 1.0, 480.0);
     if (s->has("white_luminance"))
       c.display.white_luminance = s->number("white_luminance", 100.0, kMinWhiteLuminance, kMaxWhiteLuminance);
+    c.display.light_form = s->string("light_form").value_or(c.display.light_form);
+    if (c.display.light_form != "compiled" && c.display.light_form != "full")
+      s->fail("light_form",
+              "unknown light form '" + c.display.light_form +
+                  "' (compiled: compact where the compiler found it good; full: every circuit in full)");
     c.display.frame_timing = s->string("frame_timing").value_or(c.display.frame_timing);
     if (!render::parse_frame_timing(c.display.frame_timing))
       s->fail("frame_timing", "unknown frame timing '" + c.display.frame_timing + "' (" +

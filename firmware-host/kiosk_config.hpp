@@ -49,6 +49,9 @@ struct DisplayConfig {
   std::string frame_timing = "auto";
   // A white diffuse surface this bright (cd/m2) is shown as white, instead of the bundle's exposure.
   std::optional<double> white_luminance;
+  // "compiled": each circuit in the form the compiler chose (compact where within its limit); "full": every
+  // circuit from the full float light (more display memory, no compact error).
+  std::string light_form = "compiled";
 };
 
 struct StartConfig {

@@ -104,6 +104,12 @@ TEST_F(KioskConfigTest, DisplayTakesGbmAndTheRefinementKnobs) {
   EXPECT_NE(dark.find("display.white_luminance"), std::string::npos) << dark;
   const auto msg = error_of(std::string(kMinimal) + "[display]\ntarget_hz = 0\n");
   EXPECT_NE(msg.find("display.target_hz"), std::string::npos) << msg;
+  EXPECT_EQ(c.display.light_form, "compiled");
+  const auto full = load_kiosk_config(write(std::string(kMinimal) + "[display]\nlight_form = \"full\"\n"));
+  EXPECT_EQ(full.display.light_form, "full");
+  const auto form = error_of(std::string(kMinimal) + "[display]\nlight_form = \"compact\"\n");
+  EXPECT_NE(form.find("display.light_form"), std::string::npos) << form;
+  EXPECT_NE(form.find("compiled"), std::string::npos) << form;
   const auto timing = error_of(std::string(kMinimal) + "[display]\nframe_timing = \"gpu\"\n");
   EXPECT_NE(timing.find("display.frame_timing"), std::string::npos) << timing;
   EXPECT_NE(timing.find("auto, finish or queries"), std::string::npos) << timing;
