@@ -17,14 +17,14 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
 }
 
-// Scalar direct irradiance (luminance weight, all circuits at full) at each point.
+// Scalar direct irradiance (luminance weight, all circuits at full) at each point; the light per circuit
+// and channel is left in `light`.
 std::vector<double> irradiance(const std::vector<SurfaceSample>& points,
                                const std::vector<model::Luminaire>& luminaires, std::size_t circuits,
                                const TriangleBvh& occluders, const LightRefinementOptions& o,
-                               double& shadow_rays) {
+                               double& shadow_rays, std::vector<float>& light) {
   DirectLightStats stats;
-  const auto light =
-      direct_light(points, luminaires, circuits, occluders, {o.samples_per_luminaire, o.threads}, &stats);
+  light = direct_light(points, luminaires, circuits, occluders, {o.samples_per_luminaire, o.threads}, &stats);
   shadow_rays += double(stats.shadow_rays);
   std::vector<double> out(points.size(), 0.0);
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -73,11 +73,22 @@ void split_triangle(PolygonMesh& mesh, std::size_t t, const std::array<std::uint
 
 LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, const std::vector<bool>& lit,
                                             const std::vector<model::Luminaire>& luminaires,
-                                            const TriangleBvh& occluders, const LightRefinementOptions& o) {
+                                            const TriangleBvh& occluders, const LightRefinementOptions& o,
+                                            std::vector<std::vector<float>>* direct) {
   LightRefinementStats stats;
+  if (direct) direct->assign(meshes.size(), {});
   if (luminaires.empty() || o.tolerance <= 0.0) return stats;
   std::size_t circuits = 1;
   for (const auto& l : luminaires) circuits = std::max<std::size_t>(circuits, l.circuit + 1);
+  stats.circuits = circuits;
+  const std::size_t stride = circuits * 3;
+  // Appends the gathered light of points [first, first + count) to mesh m's.
+  std::vector<float> light;
+  auto keep = [&](std::size_t m, std::size_t first, std::size_t count) {
+    if (direct)
+      (*direct)[m].insert((*direct)[m].end(), light.begin() + std::ptrdiff_t(first * stride),
+                          light.begin() + std::ptrdiff_t((first + count) * stride));
+  };
 
   // Direct light at every vertex of every lit mesh, and its RMS: the scale the tolerance is relative to.
   std::vector<std::vector<double>> value(meshes.size());
@@ -86,17 +97,19 @@ LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, co
     for (std::size_t m = 0; m < meshes.size(); ++m)
       if (lit[m])
         for (const auto& p : meshes[m].vertices) points.push_back({p, meshes[m].normal, model::Rgb(1.0)});
-    const auto e = irradiance(points, luminaires, circuits, occluders, o, stats.shadow_rays);
+    const auto e = irradiance(points, luminaires, circuits, occluders, o, stats.shadow_rays, light);
     double square = 0.0;
-    std::size_t k = 0;
-    for (std::size_t m = 0; m < meshes.size(); ++m)
-      if (lit[m])
-        for (std::size_t i = 0; i < meshes[m].vertices.size(); ++i, ++k) {
-          value[m].push_back(e[k]);
-          square += e[k] * e[k];
-        }
-    if (k == 0 || square <= 0.0) return stats;
-    const double allowed = o.tolerance * std::sqrt(square / double(k));
+    std::size_t n = 0;
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      if (!lit[m]) continue;
+      keep(m, n, meshes[m].vertices.size());
+      for (std::size_t i = 0; i < meshes[m].vertices.size(); ++i, ++n) {
+        value[m].push_back(e[n]);
+        square += e[n] * e[n];
+      }
+    }
+    if (n == 0 || square <= 0.0) return stats;
+    const double allowed = o.tolerance * std::sqrt(square / double(n));
 
     std::size_t triangles = 0;
     for (const auto& mesh : meshes) triangles += mesh.triangles.size() / 3;
@@ -130,7 +143,7 @@ LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, co
       }
       if (edges.empty()) break;
       stats.edges_tested += edges.size();
-      const auto e = irradiance(midpoints, luminaires, circuits, occluders, o, stats.shadow_rays);
+      const auto e = irradiance(midpoints, luminaires, circuits, occluders, o, stats.shadow_rays, light);
       std::vector<std::unordered_map<std::uint64_t, std::uint32_t>> split(meshes.size());
       for (std::size_t i = 0; i < edges.size(); ++i) {
         const auto& [m, a, b] = edges[i];
@@ -141,6 +154,7 @@ LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, co
         split[m][edge_key(a, b)] = static_cast<std::uint32_t>(meshes[m].vertices.size());
         meshes[m].vertices.push_back(midpoints[i].position);
         value[m].push_back(e[i]);
+        keep(m, i, 1);
         ++stats.edges_split;
       }
       std::size_t added = 0;

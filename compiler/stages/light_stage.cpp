@@ -130,10 +130,13 @@ class LightStage final : public Stage {
     DirectLightStats direct_stats;
     std::string direct_note;
     if (s.config.lighting.gather_direct && s.patches_coarser_than_display) {
-      vertex_direct = gather_vertex_direct(s, &direct_stats);
+      std::size_t from_refinement = 0;
+      vertex_direct = gather_vertex_direct(s, &direct_stats, from_refinement);
       patch_direct = patch_means(s.patches, vertex_direct, circuits * 3);
       ro.gathered_direct = patch_direct;
-      direct_note = fmt::format("direct gathered at vertices ({} shadow rays), ", direct_stats.shadow_rays);
+      direct_note =
+          fmt::format("direct gathered at vertices ({} from the light refinement, {} shadow rays), ",
+                      from_refinement, direct_stats.shadow_rays);
     } else if (s.config.lighting.gather_direct) {
       patch_direct = gather_patch_direct(s, &direct_stats);
       ro.gathered_direct = patch_direct;
@@ -184,9 +187,30 @@ class LightStage final : public Stage {
     return out;
   }
 
-  // Direct light at every lit vertex (panels glow, so theirs stay 0), [vertex][circuit][channel].
-  static std::vector<double> gather_vertex_direct(CompileState& s, DirectLightStats* stats) {
-    return gather_direct(s, s.samples, s.sample_vertex, s.out.vertices.size(), stats);
+  // Direct light at every lit vertex (panels glow, so theirs stay 0), [vertex][circuit][channel]: the light
+  // refinement's where it gathered it (the values its edges were tested with), gathered here for the rest.
+  // `refined`: how many vertices took the refinement's.
+  static std::vector<double> gather_vertex_direct(CompileState& s, DirectLightStats* stats,
+                                                  std::size_t& refined) {
+    refined = 0;
+    if (s.sample_refined.empty())
+      return gather_direct(s, s.samples, s.sample_vertex, s.out.vertices.size(), stats);
+    std::vector<SurfaceSample> rest;
+    std::vector<std::uint32_t> rest_vertex;
+    for (std::size_t i = 0; i < s.samples.size(); ++i)
+      if (!s.sample_refined[i]) {
+        rest.push_back(s.samples[i]);
+        rest_vertex.push_back(s.sample_vertex[i]);
+      }
+    auto out = gather_direct(s, rest, rest_vertex, s.out.vertices.size(), stats);
+    const std::size_t k = s.model.circuits.size() * 3;
+    for (std::size_t i = 0; i < s.samples.size(); ++i) {
+      if (!s.sample_refined[i]) continue;
+      ++refined;
+      for (std::size_t j = 0; j < k; ++j)
+        out[s.sample_vertex[i] * k + j] = s.sample_direct[i * k + j] * s.samples[i].albedo[int(j % 3)];
+    }
+    return out;
   }
 
   // Vertices the light refinement added are corners of no patch: they take the shot light interpolated

@@ -4,8 +4,10 @@
 // the mesh and light stages are checked first, before anything is allocated.
 #include <spdlog/fmt/fmt.h>
 
+#include <algorithm>
 #include <glm/geometric.hpp>
 #include <optional>
+#include <span>
 
 #include "compiler/geometry/coarse_mesh.hpp"
 #include "compiler/geometry/mesher.hpp"
@@ -62,9 +64,10 @@ class MeshStage final : public Stage {
 
   // With a target error and gathered direct light, the diced meshes are subdivided further where the
   // direct light bends more than the target allows (compiler/lighting/light_refinement.hpp).
+  // `direct`: the direct light it gathered, per mesh (light_refinement.hpp).
   static LightRefinementStats refine_by_light(
       const CompileState& s, const std::vector<std::pair<const model::Polygon*, std::uint32_t>>& to_emit,
-      std::vector<PolygonMesh>& meshes) {
+      std::vector<PolygonMesh>& meshes, std::vector<std::vector<float>>& direct) {
     const auto& l = s.config.lighting;
     if (!refines_by_light(s)) return {};
     std::vector<bool> lit;
@@ -83,7 +86,7 @@ class MeshStage final : public Stage {
     o.min_edge = std::max(kMinGrid, l.grid / 16.0);
     o.samples_per_luminaire = l.samples_per_luminaire;
     o.threads = s.options.threads;
-    return refine_by_direct_light(meshes, lit, s.model.luminaires, bvh, o);
+    return refine_by_direct_light(meshes, lit, s.model.luminaires, bvh, o, &direct);
   }
 
   double dice_size(const CompileState& s, const model::Polygon& poly) const {
@@ -91,17 +94,21 @@ class MeshStage final : public Stage {
   }
   // Writes one polygon's diced mesh and coarse form into the bundle and the light stage's inputs.
   // `solve`: the triangles the radiosity solver shoots between (the dicing before light refinement, whose
-  // vertices are the first of `mesh`'s), or `mesh` itself.
+  // vertices are the first of `mesh`'s), or `mesh` itself. `direct`: the refinement's direct light at the
+  // first of `mesh`'s vertices, `circuits` per vertex, when it ran.
   void emit(CompileState& s, const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh,
-            const PolygonMesh& coarse, const PolygonMesh& solve);
+            const PolygonMesh& coarse, const PolygonMesh& solve, std::span<const float> direct,
+            std::size_t circuits);
 
+  bool refined_direct_ = false;  // the refinement's direct light is handed to the light stage
   std::size_t coarse_fallbacks_ = 0;
   std::size_t coarse_unrepaired_ = 0;           // coarse forms drawn without their seam repair
   std::vector<const model::Polygon*> emitted_;  // the model polygon of each bundle polygon
 };
 
 void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t luminaire,
-                     const PolygonMesh& mesh, const PolygonMesh& coarse, const PolygonMesh& solve) {
+                     const PolygonMesh& mesh, const PolygonMesh& coarse, const PolygonMesh& solve,
+                     std::span<const float> direct, std::size_t circuits) {
   auto& out = s.out;
   const double cell_size = dice_size(s, poly);
   if (mesh.triangles.empty()) return;
@@ -110,7 +117,9 @@ void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t 
   const model::Rgb albedo = poly.role == model::Role::Luminaire
                                 ? model::Rgb(kPanelReflectance)
                                 : s.model.materials[poly.material].reflectance;
-  for (const auto& v : mesh.vertices) {
+  const std::size_t k = s.model.circuits.size() * 3, known = circuits ? direct.size() / (circuits * 3) : 0;
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const model::Vec3& v = mesh.vertices[i];
     model::VertexRecord r{};
     for (int a = 0; a < 3; ++a) {
       r.position[a] = static_cast<float>(v[a]);
@@ -122,6 +131,12 @@ void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t 
     if (poly.role != model::Role::Luminaire) {
       s.samples.push_back({v, mesh.normal, albedo});
       s.sample_vertex.push_back(static_cast<std::uint32_t>(out.vertices.size()));
+      if (refined_direct_) {
+        s.sample_refined.push_back(i < known);
+        s.sample_direct.resize(s.sample_direct.size() + k, 0.0f);
+        if (i < known)
+          std::copy_n(&direct[i * circuits * 3], circuits * 3, s.sample_direct.end() - std::ptrdiff_t(k));
+      }
     }
     out.vertices.push_back(r);
   }
@@ -199,8 +214,10 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
   // first of each mesh, so its triangles still index the refined mesh's vertices.
   std::vector<PolygonMesh> diced;
   if (refines_by_light(s)) diced = meshes;
-  const LightRefinementStats refined = refine_by_light(s, to_emit, meshes);
+  std::vector<std::vector<float>> direct;
+  const LightRefinementStats refined = refine_by_light(s, to_emit, meshes, direct);
   if (refined.edges_split == 0) diced.clear();
+  refined_direct_ = !diced.empty() && refined.circuits > 0;
   s.patches_coarser_than_display = !diced.empty();
   // Seams between polygons diced apart: vertices that lie on a neighbour's edge within the weld distance
   // become vertices of that edge too, so float rounding cannot open a crack along a slanted seam.
@@ -218,7 +235,8 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
   }
   for (std::size_t i = 0; i < to_emit.size(); ++i)
     emit(s, *to_emit[i].first, to_emit[i].second, meshes[i],
-         coarse_meshes.empty() ? meshes[i] : coarse_meshes[i], diced.empty() ? meshes[i] : diced[i]);
+         coarse_meshes.empty() ? meshes[i] : coarse_meshes[i], diced.empty() ? meshes[i] : diced[i],
+         refined_direct_ ? std::span<const float>(direct[i]) : std::span<const float>(), refined.circuits);
   add_polygon_textures(s.model, emitted_, out);
   return StageOutcome::ran(
       s.model.polygons.size() + panels.size(), out.polygons.size(),
