@@ -97,9 +97,17 @@ struct Circuit {
   double default_level = 1.0;
 };
 
+// A convex volume that is solid all through (a Quake brush): no viewer stands in it and no sight line
+// crosses it, so the cells stage closes portals where it cuts them and splits cells into the open parts
+// it leaves. Its faces (outward, convex) need not all be drawn: faces inside other solids are not.
+struct Solid {
+  std::vector<std::vector<Vec3>> faces;
+};
+
 struct Model {
   Vec3 origin{0.0};  // world position of local (0,0,0), metres
   std::vector<Polygon> polygons;
+  std::vector<Solid> solids;  // importers that know them (Quake's world brushes); empty otherwise
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<std::string> groups;

@@ -216,6 +216,16 @@ model::Model read_map_text(const std::string& text, const std::string& file, con
     if (kind == Kind::World) {
       world = brushes;
       world_solid = solid;
+      // The world's solid brushes are solids for the cells stage: nothing is seen or stands inside them.
+      for (std::size_t b = 0; b < brushes.size(); ++b) {
+        if (!solid[b]) continue;
+        model::Solid volume;
+        for (const auto& face : brushes[b].faces) {
+          auto& out = volume.faces.emplace_back();
+          for (const Vec3& v : face.winding) out.push_back(v * options.unit_scale);
+        }
+        model.solids.push_back(std::move(volume));
+      }
     } else {
       model::Bounds box;
       for (const auto& b : brushes) {
@@ -243,8 +253,8 @@ model::Model read_map_text(const std::string& text, const std::string& file, con
       p.name = plane.texture;
       p.source_line = static_cast<std::uint32_t>(plane.line);
       if (kind == Kind::Door) p.role = model::Role::Opening;
-      if (starts_with(tex, "sky")) {
-        p.role = model::Role::Ignored;
+      const bool sky = starts_with(tex, "sky");
+      if (sky) {
         ++stats.sky_faces;
       } else if (!tex.empty() && tex[0] == '*') {
         p.role = model::Role::Glass;
@@ -253,7 +263,10 @@ model::Model read_map_text(const std::string& text, const std::string& file, con
         continue;
       }
       auto [it, inserted] = materials.emplace(tex, static_cast<std::uint32_t>(model.materials.size()));
-      if (inserted) model.materials.push_back({plane.texture, texture_reflectance(plane.texture)});
+      // Sky faces stand for the open sky: drawn black, and light leaving through them never returns.
+      if (inserted)
+        model.materials.push_back(
+            {plane.texture, sky ? model::Rgb{0.0} : texture_reflectance(plane.texture)});
       p.material = it->second;
       model.polygons.push_back(std::move(p));
     }

@@ -1,8 +1,9 @@
 #pragma once
 // Quake .map levels (standard and Valve 220) to a Model. Brushes become faces by plane intersection, faces
 // hidden inside other brushes of the same entity are removed (CSG), `clip` brushes and `trigger_*` entities
-// are skipped, sky faces are marked Ignored (rules may turn them back on by name), liquids ('*' textures) are
-// glass. `func_door` and `func_door_secret` brushes become openings. Each texture gets a material whose
+// are skipped, sky faces are black (reflectance 0: light leaving through them is lost, nothing is seen
+// through them), the world's solid brushes are the model's solids (the cells stage's), liquids ('*' textures)
+// are glass. `func_door` and `func_door_secret` brushes become openings. Each texture gets a material whose
 // reflectance is a hash of its name (no WAD files are read). `light*` entities become point (or, with a
 // `target`, spot) luminaires; lights that share a `targetname`, or else a non-zero `style`, form one circuit;
 // the rest form the circuit "static".

@@ -19,6 +19,9 @@ class RecentreStage final : public Stage {
         for (auto& v : hole) v -= model.origin;
       if (p.texture_map) p.texture_map->translate(-model.origin);
     }
+    for (auto& solid : model.solids)
+      for (auto& face : solid.faces)
+        for (auto& v : face) v -= model.origin;
     for (auto& l : model.luminaires) l.position -= model.origin;  // imported lights move with the geometry
     const std::size_t items = model.polygons.size() + model.luminaires.size();
     return StageOutcome::ran(items, items);

@@ -218,8 +218,14 @@ TEST(QuakeMap, RolesLightsAndCircuits) {
   std::map<model::Role, int> roles;
   for (const auto& p : m.polygons) ++roles[p.role];
   EXPECT_EQ(roles[model::Role::Opening], 5);  // the door's underside lies on the world's top: hidden
-  EXPECT_EQ(roles[model::Role::Ignored], 1);  // the sky
-  EXPECT_EQ(roles[model::Role::Opaque], 5);
+  EXPECT_EQ(roles[model::Role::Ignored], 0);
+  EXPECT_EQ(roles[model::Role::Opaque], 6);  // the sky among them, black
+  EXPECT_EQ(s.sky_faces, 1u);
+  for (const auto& p : m.polygons)
+    if (p.name == "sky1") EXPECT_EQ(m.materials[p.material].reflectance, model::Rgb(0.0));
+  // The world's one brush is the model's one solid, a closed box of six faces in metres.
+  ASSERT_EQ(m.solids.size(), 1u);
+  EXPECT_EQ(m.solids[0].faces.size(), 6u);
   ASSERT_EQ(m.luminaires.size(), 3u);
   ASSERT_EQ(m.circuits.size(), 2u);  // "style 5" and "switch t1"
   EXPECT_EQ(m.circuits[0].name, "style 5");
