@@ -5,6 +5,7 @@
 #include <initializer_list>
 
 #include "compiler/partition/axial_cover.hpp"
+#include "compiler/partition/solid_volumes.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -49,14 +50,30 @@ Box shared_face(const Box& a, const Box& b, int axis, double coord) {
 }
 
 // What can close a face, each united once (the unions over diced triangles are the expensive part): the
-// opaque polygons of its plane facing -axis, those facing +axis, and the plane's glass.
+// opaque polygons of its plane facing -axis, those facing +axis, the plane's glass, and the sections of the
+// solids it cuts (closed every way: nothing sees or stands inside a solid).
 struct FaceClosers {
-  ClipperLib::Paths minus, plus, glass;
+  ClipperLib::Paths minus, plus, glass, solid;
 };
 
 FaceClosers face_closers(const Box& face, int axis, double coord, const Partition& part,
-                         const std::vector<VisPolygon>& polygons) {
+                         const std::vector<VisPolygon>& polygons, std::span<const SolidVolume> solids) {
   FaceClosers k;
+  {
+    ClipperLib::Clipper c;
+    bool any = false;
+    for (const auto& solid : solids) {
+      if (!solid.box.overlaps(face, 0.0)) continue;
+      ClipperLib::Path section = solid_section(solid, axis, coord);
+      if (section.empty()) continue;
+      c.AddPath(section, ClipperLib::ptSubject, true);
+      any = true;
+    }
+    if (any) {
+      c.AddPath(rect_path(face, axis), ClipperLib::ptClip, true);
+      c.Execute(ClipperLib::ctIntersection, k.solid, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+    }
+  }
   if (const AxialPlane* plane = find_plane(part.planes, axis, coord)) {
     std::vector<std::uint32_t> minus_ids, plus_ids;
     for (const auto id : plane->opaque)
@@ -82,8 +99,8 @@ ClipperLib::Paths open_without(const Box& face, int axis,
 
 }  // namespace
 
-PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& polygons,
-                         bool cull_back_faces) {
+PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& polygons, bool cull_back_faces,
+                         std::span<const SolidVolume> solids) {
   PortalGraph g;
   g.cell_portals.resize(part.cells.size());
   const auto& cells = part.cells;
@@ -96,8 +113,9 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
         if (d == c || std::abs(cells[d].min[axis] - x) > kFaceTolerance) continue;
         const Box face = shared_face(cells[c], cells[d], axis, x);
         if (face.max[u] - face.min[u] <= 0.0 || face.max[v] - face.min[v] <= 0.0) continue;
-        const FaceClosers k = face_closers(face, axis, x, part, polygons);
-        const ClipperLib::Paths glass_open = open_without(face, axis, {&k.minus, &k.plus, &k.glass});
+        const FaceClosers k = face_closers(face, axis, x, part, polygons, solids);
+        const ClipperLib::Paths glass_open =
+            open_without(face, axis, {&k.minus, &k.plus, &k.glass, &k.solid});
         // Portals over `open`, passable forward (back cell to front cell) and/or backward.
         auto emit = [&](const ClipperLib::Paths& open, bool forward, bool backward) {
           ClipperLib::PolyTree tree;
@@ -137,16 +155,17 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
             g.portals.push_back(std::move(p));
           }
         };
-        const ClipperLib::Paths both = open_without(face, axis, {&k.minus, &k.plus});
+        const ClipperLib::Paths both = open_without(face, axis, {&k.minus, &k.plus, &k.solid});
         emit(both, true, true);
         if (cull_back_faces) {
           // A sight line going +axis meets the fronts of polygons facing -axis and passes the rest; where
           // only one facing covers the face, the portal is one-way.
           if (!k.plus.empty())
-            emit(open_region(subtract(open_without(face, axis, {&k.minus}), both), kCrackRadius), true,
-                 false);
+            emit(open_region(subtract(open_without(face, axis, {&k.minus, &k.solid}), both), kCrackRadius),
+                 true, false);
           if (!k.minus.empty())
-            emit(open_region(subtract(open_without(face, axis, {&k.plus}), both), kCrackRadius), false, true);
+            emit(open_region(subtract(open_without(face, axis, {&k.plus, &k.solid}), both), kCrackRadius),
+                 false, true);
         }
       }
       // The outer boundary: open parts there (neither opaque nor glass) are leaks.
@@ -156,8 +175,8 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
         if (std::abs(at - edge) > kFaceTolerance) continue;
         Box face = cells[c];
         face.min[axis] = face.max[axis] = at;
-        const FaceClosers k = face_closers(face, axis, at, part, polygons);
-        for (const auto& path : open_without(face, axis, {&k.minus, &k.plus, &k.glass})) {
+        const FaceClosers k = face_closers(face, axis, at, part, polygons, solids);
+        for (const auto& path : open_without(face, axis, {&k.minus, &k.plus, &k.glass, &k.solid})) {
           const double area = std::abs(ClipperLib::Area(path)) / (kAxialClipperScale * kAxialClipperScale);
           if (area < kMinOpeningArea || !ClipperLib::Orientation(path)) continue;
           model::Vec3 centre{0.0};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "compiler/partition/partition.hpp"
+#include "compiler/partition/solid_volumes.hpp"
 
 namespace walk::compiler {
 
@@ -52,8 +53,9 @@ struct PortalGraph {
 };
 
 // With `cull_back_faces` (the renderer's default), the parts of a face covered only by polygons facing one
-// way become one-way portals as well.
+// way become one-way portals as well. The sections of `solids` close every face they cut, leaks included.
 [[nodiscard]] PortalGraph find_portals(const Partition& partition, const std::vector<VisPolygon>& polygons,
-                                       bool cull_back_faces = false);
+                                       bool cull_back_faces = false,
+                                       std::span<const SolidVolume> solids = {});
 
 }  // namespace walk::compiler

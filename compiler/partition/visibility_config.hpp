@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/partition/solid_volumes.hpp"
 #include "model/model.hpp"
 
 namespace walk::compiler {
@@ -71,6 +72,12 @@ struct VisibilityConfig {
   // Points inside the building (local coordinates) the inside flood starts from (inside_flood.hpp); the
   // compiler gives the scene's start and a point below each luminaire. None: every cell is inside.
   std::vector<model::Vec3> seeds;
+  // Solids (local coordinates; the compiler gives the model's, open_regions.hpp): nothing is seen or stands
+  // inside them. None: cells are open all through.
+  std::vector<SolidVolume> solids;
+  // Scene key `solids`: give the cells stage the model's solids (experimental, off by default: on E1M1 it
+  // still misses pixels, docs/VISIBILITY.md "Solids").
+  bool use_solids = false;
   // The scene file, for errors that name a key of its [visibility] table (set by the compile pipeline).
   std::string source;
   std::string ray_caster = "axial";

@@ -404,10 +404,11 @@ void read_visibility(const TomlTable& root, SceneConfig& cfg) {
   if (!t) return;
   t->only({"w_occlusion", "w_balance", "w_split", "threshold", "max_depth", "min_cell_size", "method",
            "sample_points", "rays_per_point", "flow_budget", "ray_caster", "cull_back_faces", "occluders",
-           "proof_pairs", "detail_extent", "detail_area", "structure", "detail"});
+           "proof_pairs", "detail_extent", "detail_area", "structure", "detail", "solids"});
   auto& v = cfg.visibility;
   v.cull_back_faces = t->boolean("cull_back_faces").value_or(v.cull_back_faces);
   v.occluders = t->boolean("occluders").value_or(v.occluders);
+  v.use_solids = t->boolean("solids").value_or(v.use_solids);
   for (const auto& [key, field] :
        {std::pair{"w_occlusion", &v.w_occlusion}, std::pair{"w_balance", &v.w_balance},
         std::pair{"w_split", &v.w_split}, std::pair{"threshold", &v.threshold}}) {

@@ -6,13 +6,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 #include "common/parallel_for.hpp"
 #include "common/progress.hpp"
 #include "compiler/visibility/draw_order.hpp"
 #include "compiler/visibility/inside_flood.hpp"
+#include "compiler/visibility/open_regions.hpp"
 #include "compiler/visibility/pvs_flow.hpp"
 #include "compiler/visibility/pvs_sampled.hpp"
 #include "compiler/visibility/vis_items.hpp"
@@ -47,10 +50,11 @@ std::vector<std::uint32_t> united(const std::vector<std::uint32_t>& a, const std
   return u;
 }
 
-// Leaves out of each cell's PVS the polygons proven hidden from the whole cell; those a sample saw are
-// visible and not tried.
-void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32_t>>& sampled,
-                  const RayCaster& caster, const VisibilityConfig& config) {
+// Leaves out of each cell's PVS (cells of `part`: the partition's, or its open regions) the polygons proven
+// hidden from the whole cell; those a sample saw are visible and not tried.
+void prove_hidden(VisibilityResult& r, std::vector<std::vector<std::uint32_t>>& pvs,
+                  const std::vector<std::vector<std::uint32_t>>& sampled, const Partition& part,
+                  const PortalGraph& graph, const RayCaster& caster, const VisibilityConfig& config) {
   const HiddenProver prover(r.polygons, caster, config.cull_back_faces);
   ProofOptions options{config.proof_pairs, ProofOptions{}.max_depth, config.cull_back_faces};
   ProofOptions cluster_options = options;
@@ -60,8 +64,8 @@ void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32
   // item undecided when its pairs run out stays in the PVS, so the cap costs tightness, never a missed pixel,
   // and refusing here would throw away the cells work already done.
   double wanted = 0.0;
-  for (std::size_t c = 0; c < r.pvs.size(); ++c)
-    for (const auto p : r.pvs[c])
+  for (std::size_t c = 0; c < pvs.size(); ++c)
+    for (const auto p : pvs[c])
       if (!std::binary_search(sampled[c].begin(), sampled[c].end(), p))
         wanted += (r.polygons[p].detail ? cluster_options : options).max_pairs;
   r.proof_pairs_wanted = wanted;
@@ -81,17 +85,17 @@ void prove_hidden(VisibilityResult& r, const std::vector<std::vector<std::uint32
         config.source, config.proof_pairs, wanted, config.proof_pair_budget, options.max_pairs,
         cluster_options.max_pairs, options.max_pairs);
   }
-  std::vector<ProofStats> stats(r.pvs.size());
-  Progress progress("cells: hidden proofs", r.pvs.size(), "cells");
-  parallel_for(r.pvs.size(), config.threads, [&](std::size_t c) {
-    const Box& box = r.partition.cells[c];
+  std::vector<ProofStats> stats(pvs.size());
+  Progress progress("cells: hidden proofs", pvs.size(), "cells");
+  parallel_for(pvs.size(), config.threads, [&](std::size_t c) {
+    const Box& box = part.cells[c];
     std::vector<HiddenProver::Exit> exits;
-    for (const auto id : r.graph.cell_portals[c]) {
-      const Portal& portal = r.graph.portals[id];
+    for (const auto id : graph.cell_portals[c]) {
+      const Portal& portal = graph.portals[id];
       if (!portal.open_from(static_cast<std::uint32_t>(c)) || portal.hull.size() < 3) continue;
       exits.push_back({portal.hull, portal.out_of(static_cast<std::uint32_t>(c))});
     }
-    std::erase_if(r.pvs[c], [&](std::uint32_t p) {
+    std::erase_if(pvs[c], [&](std::uint32_t p) {
       if (std::binary_search(sampled[c].begin(), sampled[c].end(), p)) return false;
       const ProofOptions& o = r.polygons[p].detail ? cluster_options : options;
       return prover.prove(box, exits, p, o, &stats[c]) == Verdict::Hidden;
@@ -116,7 +120,7 @@ std::string VisibilityResult::summary() const {
   const double avg = walked == 0 ? 0.0 : double(total) / double(walked);
   return fmt::format(
       "{} structure polygons, {} detail polygons in {} clusters; "
-      "{} cells ({} outside; depth {}, {} candidate planes), {} portals, {} leaks, PVS avg {:.0f} worst {} "
+      "{} cells ({} outside; depth {}, {} candidate planes){}, {} portals, {} leaks, PVS avg {:.0f} worst {} "
       "of {} "
       "items; "
       "flow {} steps, {} fallbacks to pairs ({} to might-see), {} occluded; {} sample rays; {} back faces "
@@ -125,6 +129,13 @@ std::string VisibilityResult::summary() const {
       "partition {:.2f} s portals {:.2f} s pvs {:.2f} s (proofs {:.2f} s)",
       structure_items, detail_polygons, polygons.size() - structure_items, partition.cells.size(),
       std::count(inside.begin(), inside.end(), 0), partition.depth, partition.candidates,
+      regions == 0
+          ? std::string()
+          : fmt::format(
+                " in {} open regions ({:.1f} M voxels, {:.0f} % solid; {} portals inside solids)", regions,
+                double(region_voxels) * 1e-6,
+                100.0 * double(region_solid_voxels) / double(std::max<std::uint64_t>(1, region_voxels)),
+                region_portals_dropped),
       graph.portals.size(), leaks.size(), avg, worst, polygons.size(), flow_steps, flow_fallbacks,
       flow_cell_fallbacks, flow_occluded, sample_rays, back_faces_dropped, proofs.tried, proofs.hidden,
       proofs.visible, proofs.undecided, proofs.pairs,
@@ -159,70 +170,90 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
   r.partition = build_partition(r.polygons, config);
   r.seconds_partition = since(t);
   t = std::chrono::steady_clock::now();
-  r.graph = find_portals(r.partition, r.polygons, config.cull_back_faces);
+  r.graph = find_portals(r.partition, r.polygons, config.cull_back_faces, config.solids);
+  // With solids, everything from the flood on runs over the cells' open regions ("view cells"), folded
+  // back into cells at the end; without, the view cells are the cells.
+  std::optional<OpenRegions> regions;
+  if (!config.solids.empty()) {
+    regions = open_regions(r.partition, r.graph, r.polygons, config.solids, config.threads);
+    r.regions = regions->cell_of.size();
+    r.region_voxels = regions->voxels;
+    r.region_solid_voxels = regions->solid_voxels;
+    r.region_portals_dropped = regions->portals_dropped;
+  }
+  const Partition& view = regions ? regions->partition : r.partition;
+  const PortalGraph& view_graph = regions ? regions->graph : r.graph;
   r.seconds_portals = since(t);
+  std::vector<char> view_inside;
   {
-    InsideFlood flood = flood_inside(r.partition, r.graph, config.seeds);
-    r.inside = std::move(flood.inside);
+    std::function<std::uint32_t(const model::Vec3&)> locate_seed;
+    if (regions)
+      locate_seed = [&](const model::Vec3& p) { return regions->locate(locate(r.partition.nodes, p), p); };
+    InsideFlood flood = flood_inside(view, view_graph, config.seeds, locate_seed);
+    view_inside = std::move(flood.inside);
     r.seeded = flood.seeds > 0;
     if (r.seeded) {
       r.leaks = std::move(flood.leaks);
     } else {
-      for (const auto& leak : r.graph.leaks) r.leaks.push_back({{leak.where}, leak.area});
+      for (const auto& leak : view_graph.leaks) r.leaks.push_back({{leak.where}, leak.area});
       std::sort(r.leaks.begin(), r.leaks.end(),
                 [](const LeakPath& a, const LeakPath& b) { return a.area > b.area; });
     }
   }
   t = std::chrono::steady_clock::now();
   const std::size_t n = r.partition.cells.size();
-  const bool some_outside = std::find(r.inside.begin(), r.inside.end(), 0) != r.inside.end();
-  std::vector<std::vector<std::uint32_t>> sampled, flow_polys;
+  const std::size_t nv = view.cells.size();
+  const bool some_outside = std::find(view_inside.begin(), view_inside.end(), 0) != view_inside.end();
+  std::vector<std::vector<std::uint32_t>> sampled, flow_polys, flow_cells;
   std::unique_ptr<RayCaster> caster;
   if (config.method == PvsMethod::Sampled || config.method == PvsMethod::Combined) {
-    check_sample_budget(config, std::size_t(std::count(r.inside.begin(), r.inside.end(), 1)));
+    check_sample_budget(config, std::size_t(std::count(view_inside.begin(), view_inside.end(), 1)));
     std::vector<Triangle> triangles;
     for (std::uint32_t p = 0; p < r.polygons.size(); ++p)
       for (const auto& tri : r.polygons[p].triangles) triangles.push_back({tri[0], tri[1], tri[2], p});
     caster = make_ray_caster(config.ray_caster, triangles);
-    sampled = sampled_pvs(r.partition, r.graph, r.polygons, *caster,
-                          {config.sample_points, config.rays_per_point, config.seed, config.threads,
-                           config.cull_back_faces, r.inside},
-                          &r.sample_rays);
+    SampledPvsOptions options{config.sample_points,   config.rays_per_point, config.seed, config.threads,
+                              config.cull_back_faces, view_inside,           {}};
+    if (regions)
+      options.usable = [&](std::size_t region, const model::Vec3& p) {
+        return regions->holds(static_cast<std::uint32_t>(region), p);
+      };
+    sampled = sampled_pvs(view, view_graph, r.polygons, *caster, options, &r.sample_rays);
   }
   if (config.method != PvsMethod::Sampled) {
     FlowOptions options{config.flow_budget, config.threads, config.occluders, config.cull_back_faces, {}};
     // Flows start only in the walk's cells, but pass through every cell: the cells off the walk (the
     // outside, a wall's hollow core, a window's reveal) are convex like the rest, so a sight line out of
     // a window meets another window only along a line that really passes between them.
-    if (some_outside) options.sources.assign(r.inside.begin(), r.inside.end());
-    FlowPvs flow = portal_flow_pvs(r.partition, r.graph, r.polygons, options);
-    r.flow_cells = std::move(flow.cells);
+    if (some_outside) options.sources.assign(view_inside.begin(), view_inside.end());
+    FlowPvs flow = portal_flow_pvs(view, view_graph, r.polygons, options);
+    flow_cells = std::move(flow.cells);
     flow_polys = std::move(flow.polygons);
     r.flow_steps = flow.steps;
     r.flow_occluded = flow.occluded;
     r.flow_fallbacks = flow.fallbacks;
     r.flow_cell_fallbacks = flow.cell_fallbacks;
   }
-  r.pvs.resize(n);
-  for (std::size_t c = 0; c < n; ++c) {
-    if (!r.inside[c]) continue;  // off the walk: the renderer draws everything there
+  std::vector<std::vector<std::uint32_t>> pvs(nv);
+  for (std::size_t c = 0; c < nv; ++c) {
+    if (!view_inside[c]) continue;  // off the walk: the renderer draws everything there
     switch (config.method) {
       case PvsMethod::Sampled:
-        r.pvs[c] = std::move(sampled[c]);
+        pvs[c] = std::move(sampled[c]);
         break;
       case PvsMethod::Conservative:
-        for (const auto d : r.flow_cells[c]) r.pvs[c] = united(r.pvs[c], r.partition.cell_polygons[d]);
+        for (const auto d : flow_cells[c]) pvs[c] = united(pvs[c], view.cell_polygons[d]);
         break;
       case PvsMethod::Combined:
-        r.pvs[c] = united(flow_polys[c], sampled[c]);
+        pvs[c] = united(flow_polys[c], sampled[c]);
         break;
     }
   }
   if (config.cull_back_faces) {
     // The renderer culls back faces: an opaque polygon turned away from the whole cell is never drawn there.
-    for (std::size_t c = 0; c < n; ++c) {
-      const Box& box = r.partition.cells[c];
-      std::erase_if(r.pvs[c], [&](std::uint32_t p) {
+    for (std::size_t c = 0; c < nv; ++c) {
+      const Box& box = view.cells[c];
+      std::erase_if(pvs[c], [&](std::uint32_t p) {
         const bool away = r.polygons[p].opaque && faces_away_from(r.polygons[p], box);
         r.back_faces_dropped += away ? 1 : 0;
         return away;
@@ -230,10 +261,26 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     }
   }
   // After the back-face pass: a polygon turned away from the whole cell needs no proof.
-  if (config.method == PvsMethod::Combined && config.proof_pairs > 0 && n > 1) {
+  if (config.method == PvsMethod::Combined && config.proof_pairs > 0 && nv > 1) {
     const auto tp = std::chrono::steady_clock::now();
-    prove_hidden(r, sampled, *caster, config);
+    prove_hidden(r, pvs, sampled, view, view_graph, *caster, config);
     r.seconds_proofs = since(tp);
+  }
+  // Back to cells: a cell sees what any of its inside view cells sees.
+  r.inside.assign(n, 0);
+  r.pvs.assign(n, {});
+  if (!flow_cells.empty()) r.flow_cells.assign(n, {});
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::size_t c = regions ? regions->cell_of[v] : v;
+    if (!view_inside[v]) continue;
+    r.inside[c] = 1;
+    r.pvs[c] = r.pvs[c].empty() ? std::move(pvs[v]) : united(r.pvs[c], pvs[v]);
+    if (flow_cells.empty()) continue;
+    for (const auto d : flow_cells[v]) r.flow_cells[c].push_back(regions ? regions->cell_of[d] : d);
+  }
+  for (auto& cells : r.flow_cells) {
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   }
   r.seconds_pvs = since(t);
   // Per cell, for -v: counting detail items walks every PVS, so only when the line is logged.
@@ -247,7 +294,8 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
         "({} detail; flow {}, samples {})",
         c, b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z,
         r.flow_cells.empty() ? 0 : r.flow_cells[c].size(), r.pvs[c].size(), detail,
-        flow_polys.empty() ? 0 : flow_polys[c].size(), sampled.empty() ? 0 : sampled[c].size());
+        regions || flow_polys.empty() ? 0 : flow_polys[c].size(),
+        regions || sampled.empty() ? 0 : sampled[c].size());
   }
   return r;
 }

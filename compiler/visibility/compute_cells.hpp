@@ -22,7 +22,12 @@ struct VisibilityResult {
   std::size_t detail_polygons = 0;
   Partition partition;
   PortalGraph graph;
-  std::vector<char> inside;     // per cell: reached by the inside flood (all, without seeds)
+  std::vector<char>
+      inside;  // per cell: some open region of it reached by the inside flood (all, without seeds)
+  // With solids (open_regions.hpp): the open regions the flood, samples, flow and proofs ran over.
+  std::size_t regions = 0;
+  std::uint64_t region_voxels = 0, region_solid_voxels = 0;
+  std::size_t region_portals_dropped = 0;
   bool seeded = false;          // the flood had seeds
   std::vector<LeakPath> leaks;  // largest first; without seeds, every open part of the outer boundary
   std::vector<std::vector<std::uint32_t>> pvs;  // per cell, sorted item ids, by config.method (empty outside)

@@ -28,7 +28,8 @@ bool walkable(const Portal& p) {
 
 }  // namespace
 
-InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<const model::Vec3> seeds) {
+InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<const model::Vec3> seeds,
+                         const std::function<std::uint32_t(const model::Vec3&)>& locate_seed) {
   InsideFlood f;
   const std::size_t n = part.cells.size();
   f.seeds = seeds.size();
@@ -42,7 +43,7 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
   std::vector<std::uint32_t> seed_of(n, 0);
   std::deque<std::uint32_t> queue;
   for (std::size_t s = 0; s < seeds.size(); ++s) {
-    const std::uint32_t c = locate(part.nodes, seeds[s]);
+    const std::uint32_t c = locate_seed ? locate_seed(seeds[s]) : locate(part.nodes, seeds[s]);
     if (c >= n || f.inside[c]) continue;
     f.inside[c] = 1;
     seed_of[c] = static_cast<std::uint32_t>(s);

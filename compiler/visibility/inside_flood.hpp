@@ -6,6 +6,7 @@
 // opening of the model's outer boundary that the flood reaches, reported with a path of points from a seed to
 // it (qbsp's .pts line).
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -28,7 +29,10 @@ struct InsideFlood {
   std::size_t seeds = 0;
 };
 
-[[nodiscard]] InsideFlood flood_inside(const Partition& partition, const PortalGraph& graph,
-                                       std::span<const model::Vec3> seeds);
+// `locate_seed` gives a seed's cell (kOutside: none, a seed inside a solid); by default the partition's
+// node tree.
+[[nodiscard]] InsideFlood flood_inside(
+    const Partition& partition, const PortalGraph& graph, std::span<const model::Vec3> seeds,
+    const std::function<std::uint32_t(const model::Vec3&)>& locate_seed = {});
 
 }  // namespace walk::compiler

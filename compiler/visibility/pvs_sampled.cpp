@@ -76,7 +76,12 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
         origin = random_point_in(p.hull, rng);
         out_normal = p.out_of(static_cast<std::uint32_t>(c)).n;
       } else {
-        for (int a = 0; a < 3; ++a) origin[a] = box.min[a] + u(rng) * (box.max[a] - box.min[a]);
+        bool found = false;
+        for (int tries = 0; tries < kSampleTries && !found; ++tries) {
+          for (int a = 0; a < 3; ++a) origin[a] = box.min[a] + u(rng) * (box.max[a] - box.min[a]);
+          found = !options.usable || options.usable(c, origin);
+        }
+        if (!found) continue;
       }
       for (int r = 0; r < options.rays_per_point; ++r) {
         Ray ray;

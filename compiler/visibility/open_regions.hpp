@@ -1,0 +1,64 @@
+#pragma once
+// Cells split into the open parts that solids leave in them (model::Solid, such as Quake's world brushes).
+// An axial cell often straddles a wall: a room on one side, the next room or the void round a level on the
+// other. As one convex cell it lets sight pass from one side to the other; as regions (the connected open
+// parts of the cell, found on a voxel grid) a sight line entering through one portal leaves only through
+// the portals of the part it entered. Flood, samples, flow and proofs then run over regions, and a cell's
+// PVS is the union of its inside regions' (what a viewer anywhere in its open space may see).
+//
+// Conservative by construction: a voxel is solid only when it lies wholly inside one solid, so every open
+// point is in an open voxel; voxels touching through a face, an edge or a corner join (26-neighbours), so
+// any segment through open space stays in one region; a portal joins every region its box meets on each
+// side (regions it meets twice on one side merge), and an item belongs to every region its box touches.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "compiler/partition/portals.hpp"
+#include "compiler/partition/solid_volumes.hpp"
+
+namespace walk::compiler {
+
+// Each cell's grid has a line at every axial face of the solids it meets, so a voxel lies wholly inside an
+// axial solid or wholly outside it, and where two solids meet no open seam is left between them; more
+// lines keep voxels at most kOpenVoxel (metres) on a side, so a slanted solid holds the voxels well inside
+// it. A cell whose grid would pass kMaxVoxelsPerCell keeps every kth fill line only.
+inline constexpr double kOpenVoxel = 0.2;
+inline constexpr std::size_t kMaxVoxelsPerCell = std::size_t(1) << 22;
+// Grid lines closer than this (metres) are one: rounding between faces meant to coincide.
+inline constexpr double kGridLineMerge = 1e-6;
+
+struct OpenRegions {
+  // One "cell" per region: its box is the box of its open voxels, its polygons the items touching them.
+  // `planes` and `bounds` are the cells'; `nodes` is empty (locate regions with locate()).
+  Partition partition;
+  PortalGraph graph;  // portals between regions (copies of the cells' portals), leaks by region
+  std::vector<std::uint32_t> cell_of;                  // per region
+  std::vector<std::vector<std::uint32_t>> regions_of;  // per cell
+  std::uint64_t voxels = 0, solid_voxels = 0;
+  std::size_t portals_dropped = 0;  // portals with no open voxel on a side (inside a wall)
+
+  // The region holding `p` (local coordinates) in cell `cell`, or the nearest open one within two voxels;
+  // kOutside when `p` is inside a solid.
+  [[nodiscard]] std::uint32_t locate(std::uint32_t cell, const model::Vec3& p) const;
+  // Is `p` in an open voxel of `region`?
+  [[nodiscard]] bool holds(std::uint32_t region, const model::Vec3& p) const;
+
+  struct Grid {
+    std::vector<double> lines[3];      // per axis, increasing, from the cell's min to its max
+    int n[3] = {1, 1, 1};              // voxels per axis: lines - 1
+    std::vector<std::int32_t> region;  // per voxel, x fastest: its region, -1 solid
+    [[nodiscard]] std::size_t index(int i, int j, int k) const {
+      return (std::size_t(k) * std::size_t(n[1]) + std::size_t(j)) * std::size_t(n[0]) + std::size_t(i);
+    }
+    // The voxel along `a` holding coordinate x (clamped to the grid).
+    [[nodiscard]] int at(int a, double x) const;
+  };
+  std::vector<Grid> grids;  // per cell
+};
+
+[[nodiscard]] OpenRegions open_regions(const Partition& partition, const PortalGraph& graph,
+                                       const std::vector<VisPolygon>& polygons,
+                                       std::span<const SolidVolume> solids, unsigned threads);
+
+}  // namespace walk::compiler

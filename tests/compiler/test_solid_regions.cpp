@@ -1,0 +1,148 @@
+// Solids in the cells stage: their sections by axial planes, and cells split into the open regions they
+// leave (open_regions.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "compiler/partition/axial_cover.hpp"
+#include "compiler/partition/solid_volumes.hpp"
+#include "compiler/visibility/open_regions.hpp"
+#include "test_visibility_util.hpp"
+
+namespace walk::compiler {
+namespace {
+
+using model::Vec3;
+using testing::MiniBuilding;
+
+// A prism over the convex counter-clockwise polygon `base` (x, y) from z0 to z1, faces wound outward.
+model::Solid prism(const std::vector<std::array<double, 2>>& base, double z0, double z1) {
+  model::Solid s;
+  std::vector<Vec3> bottom, top;
+  for (const auto& p : base) top.push_back({p[0], p[1], z1});
+  for (auto it = base.rbegin(); it != base.rend(); ++it) bottom.push_back({(*it)[0], (*it)[1], z0});
+  s.faces.push_back(bottom);
+  s.faces.push_back(top);
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    const auto& a = base[i];
+    const auto& b = base[(i + 1) % base.size()];
+    s.faces.push_back({{a[0], a[1], z0}, {b[0], b[1], z0}, {b[0], b[1], z1}, {a[0], a[1], z1}});
+  }
+  return s;
+}
+
+model::Solid box_solid(Vec3 lo, Vec3 hi) {
+  return prism({{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}, lo.z, hi.z);
+}
+
+double section_area(const SolidVolume& s, int axis, double coord) {
+  const auto path = solid_section(s, axis, coord);
+  return path.empty() ? 0.0 : ClipperLib::Area(path) / (kAxialClipperScale * kAxialClipperScale);
+}
+
+TEST(SolidVolumes, SectionsAndContainmentIncludingDegenerateContacts) {
+  const auto solids = solid_volumes(std::vector{box_solid({0, 0, 0}, {1, 2, 3})});
+  ASSERT_EQ(solids.size(), 1u);
+  const SolidVolume& s = solids[0];
+  EXPECT_EQ(s.planes.size(), 6u);
+  EXPECT_NEAR(section_area(s, 0, 0.5), 6.0, 1e-9);  // through it: 2 x 3, counter-clockwise
+  EXPECT_NEAR(section_area(s, 2, 1.0), 2.0, 1e-9);
+  EXPECT_NEAR(section_area(s, 0, 1.0), 6.0, 1e-9);  // on a face: the face
+  EXPECT_EQ(section_area(s, 0, 1.5), 0.0);          // past it
+  // A diamond prism meets the plane x = 1 along one vertical edge only: no area, no section.
+  const auto diamond = solid_volumes(std::vector{prism({{0, 0}, {1, 1}, {0, 2}, {-1, 1}}, 0, 1)});
+  ASSERT_EQ(diamond.size(), 1u);
+  EXPECT_TRUE(solid_section(diamond[0], 0, 1.0).empty());
+  EXPECT_NEAR(section_area(diamond[0], 0, 0.5), 1.0, 1e-9);  // y 0.5..1.5 x z 0..1
+  EXPECT_TRUE(solid_contains(s, {0.5, 1.0, 1.5}, 0.0));
+  EXPECT_TRUE(solid_contains(s, {1.0, 1.0, 1.5}, 0.0));  // on a face
+  EXPECT_TRUE(solid_contains(s, {1.0 + 5e-6, 1.0, 1.5}, kPlaneEpsilon));
+  EXPECT_FALSE(solid_contains(s, {1.001, 1.0, 1.5}, kPlaneEpsilon));
+  // A face without area is left out; four faces at least enclose something.
+  model::Solid flat;
+  flat.faces = {{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}};
+  EXPECT_TRUE(solid_volumes(std::vector{flat}).empty());
+}
+
+// Two rooms, 4 m and 4 m, on either side of a 0.4 m wall that one cell straddles (the threshold keeps the
+// model one cell). `gap` opens a 1 m doorway through the wall; `seam` builds the wall of two wedges meeting
+// along a slanted plane, which no voxel lies wholly inside one of.
+struct TwoRooms {
+  MiniBuilding m;
+  std::vector<model::Solid> solids;
+  TwoRooms(bool gap, bool seam) {
+    m.room_inward({0, 0, 0}, {4, 4, 3});
+    m.room_inward({4.4, 0, 0}, {8.4, 4, 3});
+    if (gap) {
+      solids.push_back(box_solid({4, 0, 0}, {4.4, 1.5, 3}));
+      solids.push_back(box_solid({4, 2.5, 0}, {4.4, 4, 3}));
+    } else if (seam) {
+      solids.push_back(prism({{4, 0}, {4.4, 0}, {4.1, 4}, {4, 4}}, 0, 3));
+      solids.push_back(prism({{4.4, 0}, {4.4, 4}, {4.1, 4}}, 0, 3));
+    } else {
+      solids.push_back(box_solid({4, 0, 0}, {4.4, 4, 3}));
+    }
+  }
+  VisibilityResult compute() const {
+    VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+    c.threshold = 1.0;  // one cell
+    c.solids = solid_volumes(solids);
+    c.seeds = {{2, 2, 1.5}};
+    return compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
+  }
+};
+
+bool sees_room_b(const VisibilityResult& r) {
+  // Room B's polygons are the last six; its wall facing room A (x = 4.4, facing +x) among them.
+  const auto pvs = r.polygon_pvs(0);
+  return std::any_of(pvs.begin(), pvs.end(), [](std::uint32_t p) { return p >= 6; });
+}
+
+TEST(OpenRegions, AWallInsideOneCellSplitsItAndTheFarRoomLeavesThePvs) {
+  const VisibilityResult r = TwoRooms(false, false).compute();
+  ASSERT_EQ(r.partition.cells.size(), 1u);
+  EXPECT_EQ(r.regions, 2u);
+  EXPECT_EQ(r.inside[0], 1);
+  EXPECT_EQ(r.polygon_pvs(0).size(), 6u);  // room A's six faces
+  EXPECT_FALSE(sees_room_b(r));
+  // Without solids the cell is convex open space and sees both rooms.
+  VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+  c.threshold = 1.0;
+  const TwoRooms plain(false, false);
+  const VisibilityResult open =
+      compute_visibility(plain.m.b.vertices, plain.m.b.indices, plain.m.b.polygons, c);
+  EXPECT_EQ(open.regions, 0u);
+  EXPECT_TRUE(sees_room_b(open));
+}
+
+TEST(OpenRegions, ADoorwayJoinsTheRooms) {
+  const VisibilityResult r = TwoRooms(true, false).compute();
+  EXPECT_EQ(r.regions, 1u);
+  EXPECT_TRUE(sees_room_b(r));
+}
+
+TEST(OpenRegions, SolidsMeetingAlongASlantedSeamLeaveNoOpening) {
+  const VisibilityResult r = TwoRooms(false, true).compute();
+  EXPECT_EQ(r.regions, 2u);
+  EXPECT_FALSE(sees_room_b(r));
+}
+
+TEST(OpenRegions, PortalsLoseThePartsInsideSolids) {
+  // Two cells split at x = 4.2 (a wall face in that plane makes it the best candidate), the wall solid
+  // across it: the face between the cells lies wholly inside the wall, so no portal joins them.
+  TwoRooms rooms(false, false);
+  rooms.m.rect(0, 4.2, 0, 0.1, 0, 0.1);  // a small face in the plane, so the plane is a candidate
+  VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+  c.threshold = 0.0;
+  c.max_depth = 1;
+  const auto plain = compute_visibility(rooms.m.b.vertices, rooms.m.b.indices, rooms.m.b.polygons, c);
+  c.solids = solid_volumes(rooms.solids);
+  const auto solid = compute_visibility(rooms.m.b.vertices, rooms.m.b.indices, rooms.m.b.polygons, c);
+  ASSERT_EQ(plain.partition.cells.size(), solid.partition.cells.size());
+  EXPECT_LT(solid.graph.portals.size(), plain.graph.portals.size());
+  for (const auto& p : solid.graph.portals)
+    if (p.axis == 0 && std::abs(p.coord - 4.2) < 1e-9) ADD_FAILURE() << "a portal inside the wall";
+}
+
+}  // namespace
+}  // namespace walk::compiler
