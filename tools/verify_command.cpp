@@ -65,12 +65,20 @@ VerifyReport judge(const VisibilityJudge& judge, const std::vector<CellViews>& v
 // The first polygon behind a missed pixel of the cell, with where it is, to find the cause; empty if none.
 std::string first_missed(const VisibilityJudge& judge, const CellViews& views,
                          const std::vector<std::uint32_t>& pvs) {
-  for (const auto id : views.ids)
-    if (!std::binary_search(pvs.begin(), pvs.end(), id)) {
+  for (std::size_t px = 0; px + 1 < views.offsets.size(); ++px)
+    for (std::uint32_t i = views.offsets[px]; i < views.offsets[px + 1]; ++i) {
+      const auto id = views.ids[i];
+      if (std::binary_search(pvs.begin(), pvs.end(), id)) continue;
       const auto& p = judge.polygons()[id];
-      char text[160];
-      std::snprintf(text, sizeof text, " [polygon %u at (%.2f %.2f %.2f)..(%.2f %.2f %.2f)]", id, p.box.min.x,
-                    p.box.min.y, p.box.min.z, p.box.max.x, p.box.max.y, p.box.max.z);
+      // The eye whose images hold this pixel: the last that starts at or before it.
+      model::Vec3 eye{0.0};
+      for (const auto& [at, first] : views.eyes)
+        if (first <= px) eye = at;
+      char text[240];
+      std::snprintf(text, sizeof text,
+                    " [polygon %u at (%.2f %.2f %.2f)..(%.2f %.2f %.2f) seen from (%.3f %.3f %.3f)]", id,
+                    p.box.min.x, p.box.min.y, p.box.min.z, p.box.max.x, p.box.max.y, p.box.max.z, eye.x,
+                    eye.y, eye.z);
       return text;
     }
   return {};

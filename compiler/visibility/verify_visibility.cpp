@@ -4,6 +4,7 @@
 #include <bit>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <optional>
 #include <random>
 
 #include "common/parallel_for.hpp"
@@ -74,6 +75,7 @@ void VisibilityJudge::cube(const model::Vec3& eye, int res, CellViews* keep, std
   const std::uint64_t salt = options_.seed * 0x9E3779B97F4A7C15ull ^ std::bit_cast<std::uint64_t>(eye.x) ^
                              std::rotl(std::bit_cast<std::uint64_t>(eye.y), 21) ^
                              std::rotl(std::bit_cast<std::uint64_t>(eye.z), 42);
+  if (keep) keep->eyes.emplace_back(eye, keep->offsets.size() - 1);
   for (int f = 0; f < 6; ++f) {
     model::Vec3 fwd, right, up;
     face_frame(f, fwd, right, up);
@@ -160,6 +162,9 @@ CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index,
   std::mt19937_64 rng(options_.seed * 0x9E3779B97F4A7C15ull + cell_index);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   auto usable = [&](const model::Vec3& p) { return !options_.free_space_only || in_free_space(p); };
+  // A cell whose open space is a sliver beside a portal (a niche, the gap beside a pillar) holds no point
+  // that random draws find, but its portal viewpoints stand in it: it is judged from those.
+  std::optional<bool> open_beside_portals;
   for (int i = 0; i < options_.viewpoints; ++i) {
     // Up to kFreeSpaceTries draws for a point in open space; a cell with none (all solid, or a model
     // without closed rooms) is still looked at, from anywhere in it, and reported.
@@ -168,6 +173,11 @@ CellViews VisibilityJudge::views(const Box& cell, std::uint32_t cell_index,
     for (int tries = 1; !open && tries < kFreeSpaceTries; ++tries) {
       eye = inset_point(cell, {u(rng), u(rng), u(rng)});
       open = usable(eye);
+    }
+    if (!open && options_.portal_views) {
+      if (!open_beside_portals)
+        open_beside_portals = std::any_of(portal_eyes.begin(), portal_eyes.end(), usable);
+      if (*open_beside_portals) break;
     }
     if (!open) v.no_free_space = true;
     cube(eye, options_.resolution, &v, seen);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compiler/geometry/vis_geometry.hpp"
@@ -45,6 +46,8 @@ struct CellViews {
   std::vector<std::uint32_t> offsets{0};  // pixel p's ids: ids[offsets[p] .. offsets[p+1])
   std::vector<std::uint32_t> exact;       // union over the dense viewpoints and these, sorted
   std::size_t portal_viewpoints = 0;      // of those kept, how many stood beside a portal
+  // Each kept viewpoint and the first pixel its images start at, in order: which eye a missed pixel is from.
+  std::vector<std::pair<model::Vec3, std::size_t>> eyes;
 };
 
 // Viewpoints beside the portals of `cell`: each portal's centre and up to kPortalCorners of its hull's
