@@ -41,6 +41,7 @@ Grid make_grid(const Box& box, std::span<const SolidVolume> solids) {
     std::vector<double> merged;
     for (const double x : faces[a])
       if (merged.empty() || x - merged.back() > kGridLineMerge) merged.push_back(x);
+    if (merged.size() > 1 && box.max[a] - merged[merged.size() - 2] <= kGridLineMerge) merged.pop_back();
     merged.back() = box.max[a];
     faces[a] = std::move(merged);
   }
@@ -66,15 +67,17 @@ Grid make_grid(const Box& box, std::span<const SolidVolume> solids) {
   return g;
 }
 
-// Voxel index range [lo, hi] along `a` that the closed interval [x0, x1] touches.
+// Voxel index range [lo, hi] along `a` that the closed interval [x0, x1] touches, within kPlaneEpsilon:
+// items and portals come from the bundle's float coordinates, solids from the model's doubles, so a face
+// on a solid's boundary may lie a few micrometres inside it.
 std::array<int, 2> voxel_range(const Grid& g, int a, double x0, double x1) {
   const auto& lines = g.lines[a];
   // First voxel whose upper line is at or past x0 - slack; last whose lower line is at or before x1 + slack.
-  const int lo = static_cast<int>(std::lower_bound(lines.begin() + 1, lines.end(), x0 - kGridLineMerge) -
+  const int lo = static_cast<int>(std::lower_bound(lines.begin() + 1, lines.end(), x0 - kPlaneEpsilon) -
                                   (lines.begin() + 1));
-  const int hi = static_cast<int>(std::upper_bound(lines.begin(), lines.end() - 1, x1 + kGridLineMerge) -
-                                  lines.begin()) -
-                 1;
+  const int hi =
+      static_cast<int>(std::upper_bound(lines.begin(), lines.end() - 1, x1 + kPlaneEpsilon) - lines.begin()) -
+      1;
   return {std::clamp(lo, 0, g.n[a] - 1), std::clamp(hi, 0, g.n[a] - 1)};
 }
 
@@ -279,6 +282,15 @@ OpenRegions open_regions(const Partition& part, const PortalGraph& graph,
   rp.candidates = part.candidates;
   rp.cells.assign(regions, Box{model::Vec3{1e300}, model::Vec3{-1e300}});
   rp.cell_polygons.resize(regions);
+  // Cells touching each cell: an item lying on a face the cell shares with a neighbour may be listed in the
+  // neighbour only (a detail cluster whose box rests on it), yet be seen from this cell's side.
+  std::vector<std::vector<std::uint32_t>> touching(n);
+  for (std::uint32_t c = 0; c < n; ++c)
+    for (std::uint32_t d = c + 1; d < n; ++d)
+      if (part.cells[c].overlaps(part.cells[d], kPlaneEpsilon)) {
+        touching[c].push_back(d);
+        touching[d].push_back(c);
+      }
   parallel_for(n, threads, [&](std::size_t c) {
     Grid& g = o.grids[c];
     for (auto& r : g.region)
@@ -303,7 +315,13 @@ OpenRegions open_regions(const Partition& part, const PortalGraph& graph,
     }
     // Items: each region whose voxels their box touches.
     std::vector<std::int32_t> touched;
-    for (const auto item : part.cell_polygons[c]) {
+    std::vector<std::uint32_t> items = part.cell_polygons[c];
+    for (const auto d : touching[c])
+      for (const auto item : part.cell_polygons[d])
+        if (polygons[item].box.overlaps(part.cells[c], kPlaneEpsilon)) items.push_back(item);
+    std::sort(items.begin(), items.end());
+    items.erase(std::unique(items.begin(), items.end()), items.end());
+    for (const auto item : items) {
       const Box& box = polygons[item].box;
       std::array<int, 2> range[3];
       for (int a = 0; a < 3; ++a) range[a] = voxel_range(g, a, box.min[a], box.max[a]);

@@ -25,8 +25,10 @@ namespace walk::compiler {
 // it. A cell whose grid would pass kMaxVoxelsPerCell keeps every kth fill line only.
 inline constexpr double kOpenVoxel = 0.2;
 inline constexpr std::size_t kMaxVoxelsPerCell = std::size_t(1) << 22;
-// Grid lines closer than this (metres) are one: rounding between faces meant to coincide.
-inline constexpr double kGridLineMerge = 1e-6;
+// Grid lines closer than this (metres) are one: the cell's faces come from the bundle's float coordinates and
+// the solids' from the model's doubles, so a face meant to coincide with a cell's lies a few micrometres
+// off it, and the sliver of voxels between them would be open space no viewer fits in (kPlaneEpsilon).
+inline constexpr double kGridLineMerge = kPlaneEpsilon;
 
 struct OpenRegions {
   // One "cell" per region: its box is the box of its open voxels, its polygons the items touching them.
