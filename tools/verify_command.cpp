@@ -185,8 +185,22 @@ int verify(const VerifyArgs& args) {
     return 0;
   }
 
+  // Cells where no viewpoint found open space, in a model where others did, lie inside walls (a Quake
+  // level's cells cut through its brushes): no viewer stands there, and judging from inside a wall counts
+  // pixels seen through its back faces. They are listed, not judged. A model with no open space anywhere
+  // (no closed rooms) is judged from anywhere, as before.
+  std::vector<std::uint32_t> inside_walls;
+  if (std::any_of(rows.begin(), rows.end(),
+                  [&](const VerifyRow& row) { return !views[row.cell].no_free_space; }))
+    std::erase_if(rows, [&](const VerifyRow& row) {
+      if (!views[row.cell].no_free_space) return false;
+      inside_walls.push_back(row.cell);
+      return true;
+    });
   VerifyReport r = report_of(std::move(rows), j.polygon_count());
   r.portals = graph.portals.size();
+  if (!args.quiet)
+    for (const auto c : inside_walls) std::printf("cell %4u: no open space found: not judged\n", c);
   if (!args.quiet)
     for (const auto& row : r.rows) {
       std::printf("cell %4u: PVS %6llu exact %6llu missed %llu", row.cell,
@@ -195,9 +209,12 @@ int verify(const VerifyArgs& args) {
       if (views[row.cell].no_free_space) std::printf(" (no open space found: viewpoints anywhere)");
       std::printf("%s\n", missed_at[row.cell].c_str());
     }
-  std::printf("bundle %s: %zu polygons, %zu cells judged (%zu off the walk), %zu portals, leak path %s\n",
-              args.bundle.c_str(), r.polygons, r.cells, off_walk, r.portals,
-              b->leak_path().empty() ? "none" : (std::to_string(b->leak_path().size()) + " points").c_str());
+  std::printf(
+      "bundle %s: %zu polygons, %zu cells judged (%zu off the walk, %zu with no open space found), %zu "
+      "portals, "
+      "leak path %s\n",
+      args.bundle.c_str(), r.polygons, r.cells, off_walk, inside_walls.size(), r.portals,
+      b->leak_path().empty() ? "none" : (std::to_string(b->leak_path().size()) + " points").c_str());
   std::printf(
       "viewpoints per cell %d at %dx%d x6, dense %d^3 and %zu beside portals in all at %dx%d x6 (%.1f s)\n",
       args.options.viewpoints, args.options.resolution, args.options.resolution, args.options.dense,

@@ -190,7 +190,7 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     std::function<std::uint32_t(const model::Vec3&)> locate_seed;
     if (regions)
       locate_seed = [&](const model::Vec3& p) { return regions->locate(locate(r.partition.nodes, p), p); };
-    InsideFlood flood = flood_inside(view, view_graph, config.seeds, locate_seed);
+    InsideFlood flood = flood_inside(view, view_graph, config.seeds, locate_seed, regions.has_value());
     view_inside = std::move(flood.inside);
     if (regions && flood.seeds > 0) {
       // A head leans where feet cannot go: the regions next to the walk through a portal too narrow to pass

@@ -29,7 +29,8 @@ bool walkable(const Portal& p) {
 }  // namespace
 
 InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<const model::Vec3> seeds,
-                         const std::function<std::uint32_t(const model::Vec3&)>& locate_seed) {
+                         const std::function<std::uint32_t(const model::Vec3&)>& locate_seed,
+                         bool two_way_only) {
   InsideFlood f;
   const std::size_t n = part.cells.size();
   f.seeds = seeds.size();
@@ -54,7 +55,7 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
     queue.pop_front();
     for (const auto id : g.cell_portals[c]) {
       const Portal& p = g.portals[id];
-      if (p.glazed || !walkable(p)) continue;
+      if (p.glazed || !walkable(p) || (two_way_only && !(p.forward && p.backward))) continue;
       const std::uint32_t d = p.back == c ? p.front : p.back;
       if (f.inside[d]) continue;
       f.inside[d] = 1;

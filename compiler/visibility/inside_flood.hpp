@@ -30,9 +30,10 @@ struct InsideFlood {
 };
 
 // `locate_seed` gives a seed's cell (kOutside: none, a seed inside a solid); by default the partition's
-// node tree.
+// node tree. With `two_way_only` it passes no one-way portal either (a face a wall covers on one side:
+// over open regions, where cells no longer hold a wall's core, nobody walks through one).
 [[nodiscard]] InsideFlood flood_inside(
     const Partition& partition, const PortalGraph& graph, std::span<const model::Vec3> seeds,
-    const std::function<std::uint32_t(const model::Vec3&)>& locate_seed = {});
+    const std::function<std::uint32_t(const model::Vec3&)>& locate_seed = {}, bool two_way_only = false);
 
 }  // namespace walk::compiler

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <regex>
+#include <string>
 
 #include "compiler/partition/axial_cover.hpp"
 #include "compiler/partition/solid_volumes.hpp"
@@ -115,6 +118,18 @@ TEST(OpenRegions, AWallInsideOneCellSplitsItAndTheFarRoomLeavesThePvs) {
   EXPECT_TRUE(sees_room_b(open));
 }
 
+TEST(OpenRegions, AFaceAFewMicrometresInsideItsSolidStaysInItsRoom) {
+  // Bundle faces are float, solids double: room A's wall face (x = 4) lies 4 um inside a wall solid that
+  // starts at 4 - 4e-6. It is still room A's, and in its PVS.
+  TwoRooms rooms(false, false);
+  rooms.solids = {box_solid({4 - 4e-6, 0, 0}, {4.4, 4, 3})};
+  const VisibilityResult r = rooms.compute();
+  EXPECT_EQ(r.regions, 2u);
+  const auto pvs = r.polygon_pvs(0);
+  EXPECT_TRUE(std::binary_search(pvs.begin(), pvs.end(), 1u));  // room A's x = 4 face
+  EXPECT_EQ(pvs.size(), 6u);
+}
+
 TEST(OpenRegions, ADoorwayJoinsTheRooms) {
   const VisibilityResult r = TwoRooms(true, false).compute();
   EXPECT_EQ(r.regions, 1u);
@@ -142,6 +157,37 @@ TEST(OpenRegions, PortalsLoseThePartsInsideSolids) {
   EXPECT_LT(solid.graph.portals.size(), plain.graph.portals.size());
   for (const auto& p : solid.graph.portals)
     if (p.axis == 0 && std::abs(p.coord - 4.2) < 1e-9) ADD_FAILURE() << "a portal inside the wall";
+}
+
+TEST(OpenRegions, ADetailClusterSetInTheCeilingIsSeenFromTheRoomBelow) {
+  // A room whose ceiling (z = 3) has a 0.2 m hole filled by the bottom face of a fixture set into the slab
+  // above: the fixture is detail, its box rests on the plane the cells split at, so only the cell above
+  // lists it, and that cell's open part is all slab (solid). Seen from the room, it must be in its PVS.
+  MiniBuilding m;
+  m.room_inward({0, 0, 0}, {4, 4, 3});
+  m.b.polygons.erase(m.b.polygons.begin() + 5);  // the ceiling (the sixth face: z = 3, facing down)...
+  m.b.indices.resize(m.b.polygons.back().first_index + m.b.polygons.back().index_count);
+  m.b.vertices.resize(m.b.polygons.back().first_vertex + m.b.polygons.back().vertex_count);
+  for (const auto& [u0, u1, v0, v1] : std::vector<std::array<double, 4>>{
+           {0, 1.9, 0, 4}, {2.1, 4, 0, 4}, {1.9, 2.1, 0, 1.9}, {1.9, 2.1, 2.1, 4}})
+    m.rect(2, 3.0, u0, u1, v0, v1, model::Role::Opaque, -1);  // ...rebuilt round the hole
+  const auto first_fixture = static_cast<std::uint32_t>(m.b.polygons.size());
+  m.rect(2, 3.0, 1.9, 2.1, 1.9, 2.1, model::Role::Opaque, -1);  // the fixture's face in the hole
+  m.rect(2, 3.2, 1.9, 2.1, 1.9, 2.1, model::Role::Opaque, 1);   // and its top, inside the slab
+  for (std::uint32_t p = first_fixture; p < m.b.polygons.size(); ++p) m.b.polygons[p].group = 1;
+  const std::vector<std::string> groups{"room", "fixture"};
+  VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+  c.threshold = 0.3;
+  c.max_depth = 1;
+  c.detail_groups = std::regex("fixture");
+  c.solids = solid_volumes(std::vector{box_solid({0, 0, 3}, {4, 4, 3.4})});
+  c.seeds = {{2, 2, 1.5}};
+  const VisibilityResult r = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c, groups);
+  ASSERT_EQ(r.partition.cells.size(), 2u);
+  const std::uint32_t below = r.partition.cells[0].max.z <= 3.0 + 1e-9 ? 0 : 1;
+  ASSERT_LE(r.partition.cells[below].max.z, 3.0 + 1e-9);
+  const auto pvs = r.polygon_pvs(below);
+  EXPECT_TRUE(std::binary_search(pvs.begin(), pvs.end(), first_fixture));
 }
 
 }  // namespace
