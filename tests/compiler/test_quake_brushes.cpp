@@ -221,8 +221,11 @@ TEST(QuakeMap, RolesLightsAndCircuits) {
   EXPECT_EQ(roles[model::Role::Ignored], 0);
   EXPECT_EQ(roles[model::Role::Opaque], 6);  // the sky among them, black
   EXPECT_EQ(s.sky_faces, 1u);
-  for (const auto& p : m.polygons)
-    if (p.name == "sky1") EXPECT_EQ(m.materials[p.material].reflectance, model::Rgb(0.0));
+  for (const auto& p : m.polygons) {
+    if (p.name == "sky1") {
+      EXPECT_EQ(m.materials[p.material].reflectance, model::Rgb(0.0));
+    }
+  }
   // The world's one brush is the model's one solid, a closed box of six faces in metres.
   ASSERT_EQ(m.solids.size(), 1u);
   EXPECT_EQ(m.solids[0].faces.size(), 6u);

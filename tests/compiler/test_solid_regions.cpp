@@ -155,8 +155,11 @@ TEST(OpenRegions, PortalsLoseThePartsInsideSolids) {
   const auto solid = compute_visibility(rooms.m.b.vertices, rooms.m.b.indices, rooms.m.b.polygons, c);
   ASSERT_EQ(plain.partition.cells.size(), solid.partition.cells.size());
   EXPECT_LT(solid.graph.portals.size(), plain.graph.portals.size());
-  for (const auto& p : solid.graph.portals)
-    if (p.axis == 0 && std::abs(p.coord - 4.2) < 1e-9) ADD_FAILURE() << "a portal inside the wall";
+  for (const auto& p : solid.graph.portals) {
+    if (p.axis == 0 && std::abs(p.coord - 4.2) < 1e-9) {
+      ADD_FAILURE() << "a portal inside the wall";
+    }
+  }
 }
 
 TEST(OpenRegions, ADetailClusterSetInTheCeilingIsSeenFromTheRoomBelow) {
