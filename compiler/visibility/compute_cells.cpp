@@ -191,16 +191,6 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
       locate_seed = [&](const model::Vec3& p) { return regions->locate(locate(r.partition.nodes, p), p); };
     InsideFlood flood = flood_inside(view, view_graph, config.seeds, locate_seed, regions.has_value());
     view_inside = std::move(flood.inside);
-    if (regions && flood.seeds > 0) {
-      // A head leans where feet cannot go: the regions next to the walk through a portal too narrow to pass
-      // (a niche, a gap beside a pillar; glazed or not, as sight passes glass) are on it too, when sight
-      // passes into them (not through the back of a wall into a pocket the solids leave). Regions reach
-      // the void only through such gaps when solids leave one, so one step, not a flood.
-      const std::vector<char> walked = view_inside;
-      for (const Portal& p : view_graph.portals)
-        if ((walked[p.back] && p.forward) || (walked[p.front] && p.backward))
-          view_inside[p.back] = view_inside[p.front] = 1;
-    }
     r.seeded = flood.seeds > 0;
     if (r.seeded) {
       r.leaks = std::move(flood.leaks);

@@ -30,7 +30,7 @@ bool walkable(const Portal& p) {
 
 InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<const model::Vec3> seeds,
                          const std::function<std::uint32_t(const model::Vec3&)>& locate_seed,
-                         bool two_way_only) {
+                         bool over_regions) {
   InsideFlood f;
   const std::size_t n = part.cells.size();
   f.seeds = seeds.size();
@@ -55,7 +55,7 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
     queue.pop_front();
     for (const auto id : g.cell_portals[c]) {
       const Portal& p = g.portals[id];
-      if (p.glazed || !walkable(p) || (two_way_only && !(p.forward && p.backward))) continue;
+      if (p.glazed || !walkable(p) || (over_regions && !(p.forward && p.backward))) continue;
       const std::uint32_t d = p.back == c ? p.front : p.back;
       if (f.inside[d]) continue;
       f.inside[d] = 1;
@@ -80,6 +80,16 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
   }
   std::sort(f.leaks.begin(), f.leaks.end(),
             [](const LeakPath& a, const LeakPath& b) { return a.area > b.area; });
+  if (over_regions) {
+    // A head leans where feet cannot go: the regions next to the walk through a portal too narrow to pass
+    // (a niche, a gap beside a pillar; glazed or not, as sight passes glass) are on it too, when sight
+    // passes into them (not through the back of a wall into a pocket the solids leave). Regions reach the
+    // void only through such gaps when solids leave one, so one step, not a flood.
+    const std::vector<char> walked = f.inside;
+    for (const Portal& p : g.portals)
+      if ((walked[p.back] && p.forward) || (walked[p.front] && p.backward))
+        f.inside[p.back] = f.inside[p.front] = 1;
+  }
   return f;
 }
 

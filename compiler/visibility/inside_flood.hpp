@@ -30,10 +30,12 @@ struct InsideFlood {
 };
 
 // `locate_seed` gives a seed's cell (kOutside: none, a seed inside a solid); by default the partition's
-// node tree. With `two_way_only` it passes no one-way portal either (a face a wall covers on one side:
-// over open regions, where cells no longer hold a wall's core, nobody walks through one).
+// node tree. `over_regions` (cells are open regions, open_regions.hpp, where no cell holds a wall's core):
+// the flood passes no one-way portal (a face a wall covers on one side), and afterwards the regions sight
+// passes into from the walk through any portal (a niche too narrow to walk into) are inside too; leak
+// paths are those of the flood itself.
 [[nodiscard]] InsideFlood flood_inside(
     const Partition& partition, const PortalGraph& graph, std::span<const model::Vec3> seeds,
-    const std::function<std::uint32_t(const model::Vec3&)>& locate_seed = {}, bool two_way_only = false);
+    const std::function<std::uint32_t(const model::Vec3&)>& locate_seed = {}, bool over_regions = false);
 
 }  // namespace walk::compiler

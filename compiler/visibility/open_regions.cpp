@@ -32,7 +32,6 @@ Grid make_grid(const Box& box, std::span<const SolidVolume> solids) {
       for (const double x : {solid.box.min[a], solid.box.max[a]})
         if (x > box.min[a] && x < box.max[a]) faces[a].push_back(x);
   }
-  std::size_t total = 1;
   std::size_t fill_stride[3] = {1, 1, 1};
   for (int a = 0; a < 3; ++a) {
     faces[a].push_back(box.min[a]);
@@ -47,7 +46,7 @@ Grid make_grid(const Box& box, std::span<const SolidVolume> solids) {
   }
   // Fill lines, fewer of them while the grid would pass its cap.
   for (;;) {
-    total = 1;
+    std::size_t total = 1;
     for (int a = 0; a < 3; ++a) {
       auto& lines = g.lines[a];
       lines.clear();
@@ -81,8 +80,8 @@ std::array<int, 2> voxel_range(const Grid& g, int a, double x0, double x1) {
   return {std::clamp(lo, 0, g.n[a] - 1), std::clamp(hi, 0, g.n[a] - 1)};
 }
 
-// Marks solid every voxel wholly inside one solid, then labels the open voxels' 26-connected parts 0, 1, ...
-// Returns how many parts.
+// Marks solid every voxel inside one solid or, across a seam, inside their union, then labels the open
+// voxels' 6-connected parts 0, 1, ... Returns how many parts.
 int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std::uint64_t& solid_voxels) {
   g.region.assign(std::size_t(g.n[0]) * std::size_t(g.n[1]) * std::size_t(g.n[2]), kUnlabelled);
   // Grid corners inside some solid: where solids meet along a slanted face, a voxel across the seam lies in
@@ -136,6 +135,7 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
   }
   // A voxel whose corners all lie in solids but in no one of them: solid when a finer lattice of points
   // through it (kSeamLattice per side) lies in solids too.
+  std::vector<const SolidVolume*> here;
   for (int k = 0; k < g.n[2]; ++k)
     for (int j = 0; j < g.n[1]; ++j)
       for (int i = 0; i < g.n[0]; ++i) {
@@ -150,7 +150,7 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
         const model::Vec3 hi{g.lines[0][std::size_t(i) + 1], g.lines[1][std::size_t(j) + 1],
                              g.lines[2][std::size_t(k) + 1]};
         const Box vb{lo, hi};
-        std::vector<const SolidVolume*> here;
+        here.clear();
         for (const auto* solid : near)
           if (solid->box.overlaps(vb, 0.0)) here.push_back(solid);
         bool all = true;

@@ -6,10 +6,12 @@
 // the portals of the part it entered. Flood, samples, flow and proofs then run over regions, and a cell's
 // PVS is the union of its inside regions' (what a viewer anywhere in its open space may see).
 //
-// Conservative by construction: a voxel is solid only when it lies wholly inside one solid, so every open
-// point is in an open voxel; voxels touching through a face, an edge or a corner join (26-neighbours), so
-// any segment through open space stays in one region; a portal joins every region its box meets on each
-// side (regions it meets twice on one side merge), and an item belongs to every region its box touches.
+// Conservative but for one bound: a voxel is solid when one solid holds it, so open points lie in open
+// voxels, or, across a seam between solids, when solids hold a lattice of points through it (kSeamLattice in
+// open_regions.cpp), which takes a gap between solids narrower than the lattice's step as closed. Voxels
+// sharing a face join (6-neighbours: a segment through open space passes from voxel to voxel through faces,
+// but along a measure-zero set of edges and corners); a portal joins every region its box meets on each side
+// (regions it meets twice on one side merge), and an item belongs to every region its box touches.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -83,6 +83,7 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
         }
         if (!found) continue;
       }
+      cast += std::uint64_t(options.rays_per_point);
       for (int r = 0; r < options.rays_per_point; ++r) {
         Ray ray;
         ray.origin = origin;
@@ -94,7 +95,6 @@ std::vector<std::vector<std::uint32_t>> sampled_pvs(const Partition& part, const
           if (id < seen.size()) seen[id] = 1;
       }
     }
-    cast += std::uint64_t(options.points) * std::uint64_t(options.rays_per_point);
     for (std::uint32_t p = 0; p < seen.size(); ++p)
       if (seen[p]) out[c].push_back(p);
   });
