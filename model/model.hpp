@@ -108,6 +108,10 @@ struct Model {
   Vec3 origin{0.0};  // world position of local (0,0,0), metres
   std::vector<Polygon> polygons;
   std::vector<Solid> solids;  // importers that know them (Quake's world brushes); empty otherwise
+  // The importer merged its volumes by CSG (Quake's brushes): no face overlaps or is recessed behind another,
+  // so there are no doors or windows to cut out of walls, and a liquid's surface just below a floor's
+  // underside is not a window recessed into it.
+  bool csg_merged = false;
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<std::string> groups;

@@ -160,6 +160,7 @@ model::Model read_map_text(const std::string& text, const std::string& file, con
   MapStats stats;
   stats.valve220 = map.valve220;
   model::Model model;
+  model.csg_merged = true;
   model.materials.push_back({"default", {0.5, 0.5, 0.5}});
   std::map<std::string, std::uint32_t> materials;
   LightBuilder lights{file, options.unit_scale, model, stats, {}, {}, {}};

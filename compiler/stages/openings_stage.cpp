@@ -17,6 +17,7 @@ class OpeningsStage final : public Stage {
       return p.role == model::Role::Opening || p.role == model::Role::Glass;
     });
     if (!needed) return StageOutcome::skipped("scene has no openings or glass");
+    if (s.model.csg_merged) return StageOutcome::skipped("the importer's CSG left no face over another");
     const std::size_t before = s.model.polygons.size();
     const auto c = cut_openings(s.model);
     return StageOutcome::ran(before, s.model.polygons.size(),
