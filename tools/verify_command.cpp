@@ -185,18 +185,19 @@ int verify(const VerifyArgs& args) {
     return 0;
   }
 
-  // Cells where no viewpoint found open space, in a model where others did, lie inside walls (a Quake
-  // level's cells cut through its brushes): no viewer stands there, and judging from inside a wall counts
-  // pixels seen through its back faces. They are listed, not judged. A model with no open space anywhere
-  // (no closed rooms) is judged from anywhere, as before.
+  // Cells inside walls are listed, not judged (cells_to_judge).
+  std::vector<bool> no_open_space;
+  for (const auto& row : rows) no_open_space.push_back(views[row.cell].no_free_space);
+  const std::vector<bool> judged = cells_to_judge(no_open_space);
   std::vector<std::uint32_t> inside_walls;
-  if (std::any_of(rows.begin(), rows.end(),
-                  [&](const VerifyRow& row) { return !views[row.cell].no_free_space; }))
-    std::erase_if(rows, [&](const VerifyRow& row) {
-      if (!views[row.cell].no_free_space) return false;
-      inside_walls.push_back(row.cell);
-      return true;
-    });
+  std::vector<VerifyRow> judged_rows;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (judged[i])
+      judged_rows.push_back(rows[i]);
+    else
+      inside_walls.push_back(rows[i].cell);
+  }
+  rows = std::move(judged_rows);
   VerifyReport r = report_of(std::move(rows), j.polygon_count());
   r.portals = graph.portals.size();
   if (!args.quiet)

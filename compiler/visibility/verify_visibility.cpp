@@ -233,6 +233,14 @@ std::uint64_t VisibilityJudge::missed(const CellViews& views, const std::vector<
   return missed;
 }
 
+std::vector<bool> cells_to_judge(const std::vector<bool>& no_open_space) {
+  const bool open_somewhere =
+      std::find(no_open_space.begin(), no_open_space.end(), false) != no_open_space.end();
+  std::vector<bool> judge(no_open_space.size());
+  for (std::size_t c = 0; c < judge.size(); ++c) judge[c] = !open_somewhere || !no_open_space[c];
+  return judge;
+}
+
 void summarise(VerifyReport& r) {
   r.missed = r.pixels = 0;
   std::uint64_t pvs = 0, exact = 0;

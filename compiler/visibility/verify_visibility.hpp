@@ -110,4 +110,10 @@ struct VerifyReport {
 // Summarises per-cell rows into a report (cells, portals and polygons filled by the caller).
 void summarise(VerifyReport& report);
 
+// Which cells to judge, given per cell whether its viewpoints found no open space. A cell with none, in a
+// model where another found some, lies inside walls (a Quake level's cells cut through its brushes): no
+// viewer stands there, and judging it from inside a wall counts pixels seen through its back faces, so it is
+// not judged. A model with no open space anywhere (no closed rooms) is judged everywhere, from anywhere.
+[[nodiscard]] std::vector<bool> cells_to_judge(const std::vector<bool>& no_open_space);
+
 }  // namespace walk::compiler
