@@ -218,21 +218,8 @@ model::Model read_map_text(const std::string& text, const std::string& file, con
       world = brushes;
       world_solid = solid;
       // The world's solid brushes are solids for the cells stage: nothing is seen or stands inside them.
-      // Not those touching a liquid: where a wall meets water back to back, the CSG keeps neither face, and
-      // sight passes through the liquid's surface into the wall.
-      auto touches_liquid = [&](std::size_t b) {
-        for (std::size_t l = 0; l < brushes.size(); ++l) {
-          if (solid[l]) continue;
-          bool apart = false;
-          for (int k = 0; k < 3; ++k)
-            apart = apart || brushes[l].bounds.max[k] < brushes[b].bounds.min[k] - kClipEpsilon ||
-                    brushes[b].bounds.max[k] < brushes[l].bounds.min[k] - kClipEpsilon;
-          if (!apart) return true;
-        }
-        return false;
-      };
       for (std::size_t b = 0; b < brushes.size(); ++b) {
-        if (!solid[b] || touches_liquid(b)) continue;
+        if (!solid[b]) continue;
         model::Solid volume;
         for (const auto& face : brushes[b].faces) {
           auto& out = volume.faces.emplace_back();
