@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "common/parallel_for.hpp"
+#include "compiler/geometry/clipper_convert.hpp"
 #include "compiler/partition/axial_cover.hpp"
 
 namespace walk::compiler {
@@ -91,6 +92,12 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
   auto corner = [&](int i, int j, int k) {
     return (std::size_t(k) * py + std::size_t(j)) * px + std::size_t(i);
   };
+  // Voxel faces one solid holds (its four corners), per axis, indexed by the face's lowest corner: open
+  // voxels on either side of such a face do not join through it. Where a sloping ceiling meets a wall's top
+  // edge, the room below and the gap above touch only along that edge, but a voxel across the edge holds
+  // both; its faces towards the gap lie in the solids, so the two stay apart.
+  std::array<std::vector<char>, 3> blocked;
+  for (auto& b : blocked) b.assign(covered.size(), 0);
   std::vector<const SolidVolume*> near;
   std::vector<char> inside;
   for (const auto& solid : solids) {
@@ -122,6 +129,25 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
                               g.lines[2][std::size_t(lo[2] + k)]};
           inside[at(i, j, k)] = solid_contains(solid, p, kPlaneEpsilon) ? 1 : 0;
           if (inside[at(i, j, k)]) covered[corner(lo[0] + i, lo[1] + j, lo[2] + k)] = 1;
+        }
+    // A convex solid holds a face when it holds its four corners.
+    for (int k = 0; k < m[2]; ++k)
+      for (int j = 0; j < m[1]; ++j)
+        for (int i = 0; i < m[0]; ++i) {
+          if (!inside[at(i, j, k)]) continue;
+          const int c[3] = {i, j, k};
+          for (int a = 0; a < 3; ++a) {
+            const int u = (a + 1) % 3, v = (a + 2) % 3;
+            if (c[u] + 1 >= m[u] || c[v] + 1 >= m[v]) continue;
+            int cu[3] = {i, j, k}, cv[3] = {i, j, k}, cuv[3] = {i, j, k};
+            ++cu[u];
+            ++cv[v];
+            ++cuv[u];
+            ++cuv[v];
+            if (inside[at(cu[0], cu[1], cu[2])] && inside[at(cv[0], cv[1], cv[2])] &&
+                inside[at(cuv[0], cuv[1], cuv[2])])
+              blocked[std::size_t(a)][corner(lo[0] + i, lo[1] + j, lo[2] + k)] = 1;
+          }
         }
     // A convex solid holds a voxel when it holds its eight corners.
     for (int k = 0; k + 1 < m[2]; ++k)
@@ -166,6 +192,36 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
         }
         if (all) r = kSolid;
       }
+  // A face whose corners all lie in solids but in no one of them: closed when a kSeamLattice² lattice of
+  // points on it lies in solids too (two wedges meeting along a slanted seam across it).
+  auto seam_closed = [&](int a, const int f[3]) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (int c = 0; c < 4; ++c) {
+      int q[3] = {f[0], f[1], f[2]};
+      q[u] += c & 1;
+      q[v] += c >> 1;
+      if (!covered[corner(q[0], q[1], q[2])]) return false;
+    }
+    model::Vec3 lo, hi;
+    for (int b = 0; b < 3; ++b) {
+      lo[b] = g.lines[b][std::size_t(f[b])];
+      hi[b] = b == a ? lo[b] : g.lines[b][std::size_t(f[b]) + 1];
+    }
+    const Box fb{lo, hi};
+    here.clear();
+    for (const auto* solid : near)
+      if (solid->box.overlaps(fb, 0.0)) here.push_back(solid);
+    for (int c = 0; c < kSeamLattice * kSeamLattice; ++c) {
+      model::Vec3 p = lo;
+      p[u] += (hi[u] - lo[u]) * (c % kSeamLattice) / (kSeamLattice - 1);
+      p[v] += (hi[v] - lo[v]) * (c / kSeamLattice) / (kSeamLattice - 1);
+      const bool held = std::any_of(here.begin(), here.end(), [&](const SolidVolume* solid) {
+        return solid_contains(*solid, p, kPlaneEpsilon);
+      });
+      if (!held) return false;
+    }
+    return true;
+  };
   int parts = 0;
   std::vector<std::array<int, 3>> stack;
   for (int k = 0; k < g.n[2]; ++k)
@@ -185,6 +241,12 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
             if (x < 0 || y < 0 || z < 0 || x >= g.n[0] || y >= g.n[1] || z >= g.n[2]) continue;
             auto& r = g.region[g.index(x, y, z)];
             if (r != kUnlabelled) continue;
+            // The shared face's lowest corner: the far voxel's when stepping up the axis, else this one's.
+            const int a = d / 2;
+            int f[3] = {v[0], v[1], v[2]};
+            if (d % 2) ++f[a];
+            if (blocked[std::size_t(a)][corner(f[0], f[1], f[2])]) continue;
+            if (seam_closed(a, f)) continue;
             r = parts;
             stack.push_back({x, y, z});
           }
@@ -218,6 +280,56 @@ void parts_on_face(const Grid& g, int axis, bool max_side, const model::Vec3& lo
     }
 }
 
+// The parts of `cell`'s grid under portal `p`'s open area on its face `axis` (the +axis face when
+// `max_side`): row by row of the face's voxels, the outline's pieces within the row and the voxels their
+// extent along the row spans. The outline's box would take in parts beside an L-shaped or ring-shaped
+// opening that no sight line through it reaches, and join them into one region.
+void parts_under_portal(const Grid& g, const Portal& p, bool max_side, std::vector<int>& out) {
+  out.clear();
+  const int axis = p.axis, u = u_axis(axis), v = v_axis(axis);
+  auto to_int = [](double x) { return static_cast<ClipperLib::cInt>(std::llround(x * kClipperScale)); };
+  ClipperLib::Paths outline;
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (const auto& w : p.outline) {
+    auto& path = outline.emplace_back();
+    for (const auto& q : w) {
+      path.emplace_back(to_int(q[u]), to_int(q[v]));
+      lo[0] = std::min(lo[0], q[u]);
+      lo[1] = std::min(lo[1], q[v]);
+      hi[0] = std::max(hi[0], q[u]);
+      hi[1] = std::max(hi[1], q[v]);
+    }
+  }
+  if (outline.empty()) return;
+  const auto rv = voxel_range(g, v, lo[1], hi[1]);
+  int idx[3];
+  idx[axis] = max_side ? g.n[axis] - 1 : 0;
+  for (int b = rv[0]; b <= rv[1]; ++b) {
+    const ClipperLib::cInt v0 = to_int(g.lines[v][std::size_t(b)]),
+                           v1 = to_int(g.lines[v][std::size_t(b) + 1]);
+    const ClipperLib::cInt u0 = to_int(lo[0]) - 1, u1 = to_int(hi[0]) + 1;
+    ClipperLib::Clipper clip;
+    clip.AddPaths(outline, ClipperLib::ptSubject, true);
+    clip.AddPath({{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}}, ClipperLib::ptClip, true);
+    ClipperLib::Paths pieces;
+    clip.Execute(ClipperLib::ctIntersection, pieces, ClipperLib::pftEvenOdd, ClipperLib::pftNonZero);
+    idx[v] = b;
+    for (const auto& piece : pieces) {
+      ClipperLib::cInt a0 = piece.front().X, a1 = piece.front().X;
+      for (const auto& q : piece) {
+        a0 = std::min(a0, q.X);
+        a1 = std::max(a1, q.X);
+      }
+      const auto ru = voxel_range(g, u, double(a0) / kClipperScale, double(a1) / kClipperScale);
+      for (int a = ru[0]; a <= ru[1]; ++a) {
+        idx[u] = a;
+        const std::int32_t r = g.region[g.index(idx[0], idx[1], idx[2])];
+        if (r >= 0 && std::find(out.begin(), out.end(), r) == out.end()) out.push_back(r);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 OpenRegions open_regions(const Partition& part, const PortalGraph& graph,
@@ -236,7 +348,8 @@ OpenRegions open_regions(const Partition& part, const PortalGraph& graph,
     o.voxels += o.grids[c].region.size();
     o.solid_voxels += solid_voxels[c];
   }
-  // A portal joins the parts its box meets on each side; parts it meets twice on one side are one region.
+  // A portal joins the parts under its open area on each side; parts it meets twice on one side are one
+  // region.
   std::vector<std::vector<int>> parent(n);
   for (std::size_t c = 0; c < n; ++c) {
     parent[c].resize(std::size_t(parts[c]));
@@ -246,14 +359,9 @@ OpenRegions open_regions(const Partition& part, const PortalGraph& graph,
   std::vector<int> met;
   for (std::size_t id = 0; id < graph.portals.size(); ++id) {
     const Portal& p = graph.portals[id];
-    model::Vec3 lo{1e300}, hi{-1e300};
-    for (const auto& q : p.hull) {
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
     for (int side = 0; side < 2; ++side) {
       const std::uint32_t c = side == 0 ? p.back : p.front;
-      parts_on_face(o.grids[c], p.axis, side == 0, lo, hi, met);
+      parts_under_portal(o.grids[c], p, side == 0, met);
       for (const int r : met) parent[c][find_root(parent[c], r)] = find_root(parent[c], met.front());
       if (!met.empty()) portal_part[id][side] = met.front();
     }

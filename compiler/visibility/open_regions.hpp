@@ -10,8 +10,10 @@
 // voxels, or, across a seam between solids, when solids hold a lattice of points through it (kSeamLattice in
 // open_regions.cpp), which takes a gap between solids narrower than the lattice's step as closed. Voxels
 // sharing a face join (6-neighbours: a segment through open space passes from voxel to voxel through faces,
-// but along a measure-zero set of edges and corners); a portal joins every region its box meets on each side
-// (regions it meets twice on one side merge), and an item belongs to every region its box touches.
+// but along a measure-zero set of edges and corners) unless solids hold the face (one solid its four
+// corners, or solids a lattice on it across a seam): no open point lies on it to pass through. A portal
+// joins every region under its open area on each side, row by row of voxels (regions it meets twice on one
+// side merge), and an item belongs to every region its box touches.
 #include <cstdint>
 #include <span>
 #include <vector>

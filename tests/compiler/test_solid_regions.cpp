@@ -193,5 +193,49 @@ TEST(OpenRegions, ADetailClusterSetInTheCeilingIsSeenFromTheRoomBelow) {
   EXPECT_TRUE(std::binary_search(pvs.begin(), pvs.end(), first_fixture));
 }
 
+TEST(OpenRegions, SpaceTouchingTheRoomOnlyAlongAnEdgeStaysApart) {
+  // A 4 x 4 m room, one cell. A low wall (x 1.5..2, y 0..1.5) and a sloping block (its underside the line
+  // y = x - 0.5 from the wall's corner (2, 1.5) to the far wall) leave the room's corner below the slope and
+  // the rest of it touching only along the wall's top edge: no sight line passes from one to the other.
+  // Voxels just right of that edge hold open space under the slope; their faces towards the wall's side lie
+  // in the block, so the two parts stay apart.
+  MiniBuilding m;
+  m.room_inward({0, 0, 0}, {4, 4, 3});
+  const std::vector<model::Solid> solids{box_solid({1.5, 0, 0}, {2, 1.5, 3}),
+                                         prism({{2, 1.5}, {4, 3.5}, {4, 4}, {2, 4}}, 0, 3)};
+  VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+  c.threshold = 1.0;  // one cell
+  c.solids = solid_volumes(solids);
+  c.seeds = {{0.7, 2, 1.5}};
+  const VisibilityResult r = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
+  ASSERT_EQ(r.partition.cells.size(), 1u);
+  EXPECT_EQ(r.regions, 2u);
+}
+
+TEST(OpenRegions, AnLShapedOpeningJoinsOnlyWhatLiesBehindIt) {
+  // Two cells split at y = 2. Beyond it a block (x 2..4, z 0..1.5) closes the lower right of the face, so
+  // the opening between the cells is L-shaped. Before it, walls and a lid close a pocket (x 2.4..4, y 1..2,
+  // z 0..1.1) against the block: the pocket lies within the opening's box but behind no part of it, and
+  // stays a region of its own.
+  MiniBuilding m;
+  m.room_inward({0, 0, 0}, {4, 4, 3});
+  m.rect(1, 2.0, 0, 1.5, 2, 4, model::Role::Opaque, -1);  // the block's face there (u = z, v = x)
+  const std::vector<model::Solid> solids{
+      box_solid({2, 2, 0}, {4, 2.4, 1.5}),    // the block beyond
+      box_solid({2, 0.6, 0}, {2.4, 2, 1.5}),  // the pocket's side wall
+      box_solid({2, 0.6, 0}, {4, 1, 1.5}),    // its front wall
+      box_solid({2, 0.6, 1.1}, {4, 2, 1.5}),  // its lid
+  };
+  VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+  c.threshold = 0.0;
+  c.max_depth = 1;
+  c.solids = solid_volumes(solids);
+  c.seeds = {{1, 0.3, 1.5}};
+  const VisibilityResult r = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
+  ASSERT_EQ(r.partition.cells.size(), 2u);
+  ASSERT_EQ(std::min(r.partition.cells[0].max.y, r.partition.cells[1].max.y), 2.0);
+  EXPECT_EQ(r.regions, 3u);  // the room on each side, and the pocket
+}
+
 }  // namespace
 }  // namespace walk::compiler
