@@ -27,6 +27,7 @@ struct VerifyArgs {
   double threshold = VisibilityConfig{}.threshold;          // the sweep's partition threshold: the scene's
   double min_cell_size = VisibilityConfig{}.min_cell_size;  // and its thinnest cell
   bool quiet = false;
+  std::vector<std::uint32_t> cells;  // judge only these (to look into a cell's misses); empty: all
 };
 
 std::vector<std::vector<std::uint32_t>> bundle_pvs(const model::Bundle& b) {
@@ -106,7 +107,9 @@ int verify(const VerifyArgs& args) {
   for (std::uint32_t c = 0; c < part.cells.size(); ++c) {
     progress.advance();
     // Off the walk (only the outside reaches it): no viewer stands there and the renderer draws everything.
-    if (!keep_images && (b->cells()[c].flags & model::kCellOutside)) {
+    const bool asked =
+        args.cells.empty() || std::find(args.cells.begin(), args.cells.end(), c) != args.cells.end();
+    if (!keep_images && (!asked || (b->cells()[c].flags & model::kCellOutside))) {
       ++off_walk;
       views.emplace_back();
       missed_at.emplace_back();
@@ -255,6 +258,9 @@ void add_verify_command(CLI::App& app, int& exit_code) {
                   "Thinnest cell the sweep recomputes cells with: the scene's [visibility] min_cell_size")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("-q,--quiet", args->quiet, "No per-cell lines");
+  cmd->add_option("--cells", args->cells,
+                  "Judge only these cells (the others count as off the walk), to look into their misses")
+      ->delimiter(',');
   cmd->add_flag("--two-sided{false}", args->options.cull_back_faces,
                 "Judge as if the renderer drew both sides of every polygon (default: back faces culled, as "
                 "it draws them)");
