@@ -3,17 +3,15 @@
 #include <cmath>
 
 namespace walk::compiler {
-namespace {
-ClipperLib::IntPoint pt(double u, double v) {
+ClipperLib::IntPoint axial_point(double u, double v) {
   return {static_cast<ClipperLib::cInt>(std::llround(u * kAxialClipperScale)),
           static_cast<ClipperLib::cInt>(std::llround(v * kAxialClipperScale))};
 }
-}  // namespace
 
 ClipperLib::Path rect_path(const Box& box, int axis) {
   const int u = u_axis(axis), v = v_axis(axis);
-  return {pt(box.min[u], box.min[v]), pt(box.max[u], box.min[v]), pt(box.max[u], box.max[v]),
-          pt(box.min[u], box.max[v])};
+  return {axial_point(box.min[u], box.min[v]), axial_point(box.max[u], box.min[v]),
+          axial_point(box.max[u], box.max[v]), axial_point(box.min[u], box.max[v])};
 }
 
 ClipperLib::Paths union_of(const std::vector<std::uint32_t>& ids, const std::vector<VisPolygon>& polygons,
@@ -30,7 +28,8 @@ ClipperLib::Paths union_of(const std::vector<std::uint32_t>& ids, const std::vec
       if (off) continue;
     }
     for (const auto& t : p.triangles) {
-      ClipperLib::Path path{pt(t[0][u], t[0][v]), pt(t[1][u], t[1][v]), pt(t[2][u], t[2][v])};
+      ClipperLib::Path path{axial_point(t[0][u], t[0][v]), axial_point(t[1][u], t[1][v]),
+                            axial_point(t[2][u], t[2][v])};
       const double a = ClipperLib::Area(path);
       if (a == 0.0) continue;
       // Back-to-back faces (a floor and the ceiling below it) project with opposite windings, which would

@@ -19,6 +19,8 @@ inline constexpr double kAxialClipperScale = 1e6;
   return (axis + 2) % 3;
 }
 
+// The point (u, v) of an axial plane in Clipper units.
+[[nodiscard]] ClipperLib::IntPoint axial_point(double u, double v);
 [[nodiscard]] ClipperLib::Path rect_path(const Box& box, int axis);
 // Union of the triangles of `ids` projected onto the plane normal to `axis`.
 [[nodiscard]] ClipperLib::Paths union_of(const std::vector<std::uint32_t>& ids,

@@ -61,9 +61,7 @@ ClipperLib::Path solid_section(const SolidVolume& solid, int axis, double coord)
   const Winding hull = convex_hull(points, normal);
   if (hull.size() < 3) return {};
   ClipperLib::Path path;
-  for (const auto& p : hull)
-    path.push_back({static_cast<ClipperLib::cInt>(std::llround(p[u] * kAxialClipperScale)),
-                    static_cast<ClipperLib::cInt>(std::llround(p[v] * kAxialClipperScale))});
+  for (const auto& p : hull) path.push_back(axial_point(p[u], p[v]));
   if (ClipperLib::Area(path) == 0.0) return {};
   if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);
   return path;

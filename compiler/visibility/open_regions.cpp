@@ -7,7 +7,6 @@
 #include <numeric>
 
 #include "common/parallel_for.hpp"
-#include "compiler/geometry/clipper_convert.hpp"
 #include "compiler/partition/axial_cover.hpp"
 
 namespace walk::compiler {
@@ -79,6 +78,28 @@ std::array<int, 2> voxel_range(const Grid& g, int a, double x0, double x1) {
       static_cast<int>(std::upper_bound(lines.begin(), lines.end() - 1, x1 + kPlaneEpsilon) - lines.begin()) -
       1;
   return {std::clamp(lo, 0, g.n[a] - 1), std::clamp(hi, 0, g.n[a] - 1)};
+}
+
+// Do the solids of `near` hold a lattice of kSeamLattice points per side through the box [lo, hi] (one point
+// along an axis it is flat in: a voxel's face)? `here` is scratch for the solids meeting the box.
+bool lattice_held(const model::Vec3& lo, const model::Vec3& hi, const std::vector<const SolidVolume*>& near,
+                  std::vector<const SolidVolume*>& here) {
+  here.clear();
+  for (const auto* solid : near)
+    if (solid->box.overlaps(Box{lo, hi}, 0.0)) here.push_back(solid);
+  int steps[3];
+  for (int a = 0; a < 3; ++a) steps[a] = hi[a] > lo[a] ? kSeamLattice : 1;
+  for (int c = 0; c < steps[0] * steps[1] * steps[2]; ++c) {
+    const int at[3] = {c % steps[0], c / steps[0] % steps[1], c / (steps[0] * steps[1])};
+    model::Vec3 p = lo;
+    for (int a = 0; a < 3; ++a)
+      if (steps[a] > 1) p[a] += (hi[a] - lo[a]) * (double(at[a]) / (kSeamLattice - 1));
+    const bool held = std::any_of(here.begin(), here.end(), [&](const SolidVolume* solid) {
+      return solid_contains(*solid, p, kPlaneEpsilon);
+    });
+    if (!held) return false;
+  }
+  return true;
 }
 
 // Marks solid every voxel inside one solid or, across a seam, inside their union, then labels the open
@@ -175,22 +196,7 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
                              g.lines[2][std::size_t(k)]};
         const model::Vec3 hi{g.lines[0][std::size_t(i) + 1], g.lines[1][std::size_t(j) + 1],
                              g.lines[2][std::size_t(k) + 1]};
-        const Box vb{lo, hi};
-        here.clear();
-        for (const auto* solid : near)
-          if (solid->box.overlaps(vb, 0.0)) here.push_back(solid);
-        bool all = true;
-        for (int c = 0; c < kSeamLattice * kSeamLattice * kSeamLattice && all; ++c) {
-          const int a = c % kSeamLattice, b = c / kSeamLattice % kSeamLattice,
-                    d = c / (kSeamLattice * kSeamLattice);
-          const model::Vec3 t{double(a) / (kSeamLattice - 1), double(b) / (kSeamLattice - 1),
-                              double(d) / (kSeamLattice - 1)};
-          const model::Vec3 p = lo + (hi - lo) * t;
-          all = std::any_of(here.begin(), here.end(), [&](const SolidVolume* solid) {
-            return solid_contains(*solid, p, kPlaneEpsilon);
-          });
-        }
-        if (all) r = kSolid;
+        if (lattice_held(lo, hi, near, here)) r = kSolid;
       }
   // A face whose corners all lie in solids but in no one of them: closed when a kSeamLattice² lattice of
   // points on it lies in solids too (two wedges meeting along a slanted seam across it).
@@ -207,20 +213,7 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
       lo[b] = g.lines[b][std::size_t(f[b])];
       hi[b] = b == a ? lo[b] : g.lines[b][std::size_t(f[b]) + 1];
     }
-    const Box fb{lo, hi};
-    here.clear();
-    for (const auto* solid : near)
-      if (solid->box.overlaps(fb, 0.0)) here.push_back(solid);
-    for (int c = 0; c < kSeamLattice * kSeamLattice; ++c) {
-      model::Vec3 p = lo;
-      p[u] += (hi[u] - lo[u]) * (c % kSeamLattice) / (kSeamLattice - 1);
-      p[v] += (hi[v] - lo[v]) * (c / kSeamLattice) / (kSeamLattice - 1);
-      const bool held = std::any_of(here.begin(), here.end(), [&](const SolidVolume* solid) {
-        return solid_contains(*solid, p, kPlaneEpsilon);
-      });
-      if (!held) return false;
-    }
-    return true;
+    return lattice_held(lo, hi, near, here);
   };
   int parts = 0;
   std::vector<std::array<int, 3>> stack;
@@ -287,30 +280,26 @@ void parts_on_face(const Grid& g, int axis, bool max_side, const model::Vec3& lo
 void parts_under_portal(const Grid& g, const Portal& p, bool max_side, std::vector<int>& out) {
   out.clear();
   const int axis = p.axis, u = u_axis(axis), v = v_axis(axis);
-  auto to_int = [](double x) { return static_cast<ClipperLib::cInt>(std::llround(x * kClipperScale)); };
   ClipperLib::Paths outline;
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  Box row{model::Vec3{1e300}, model::Vec3{-1e300}};
   for (const auto& w : p.outline) {
     auto& path = outline.emplace_back();
     for (const auto& q : w) {
-      path.emplace_back(to_int(q[u]), to_int(q[v]));
-      lo[0] = std::min(lo[0], q[u]);
-      lo[1] = std::min(lo[1], q[v]);
-      hi[0] = std::max(hi[0], q[u]);
-      hi[1] = std::max(hi[1], q[v]);
+      path.push_back(axial_point(q[u], q[v]));
+      row.min = glm::min(row.min, q);
+      row.max = glm::max(row.max, q);
     }
   }
   if (outline.empty()) return;
-  const auto rv = voxel_range(g, v, lo[1], hi[1]);
+  const auto rv = voxel_range(g, v, row.min[v], row.max[v]);
   int idx[3];
   idx[axis] = max_side ? g.n[axis] - 1 : 0;
   for (int b = rv[0]; b <= rv[1]; ++b) {
-    const ClipperLib::cInt v0 = to_int(g.lines[v][std::size_t(b)]),
-                           v1 = to_int(g.lines[v][std::size_t(b) + 1]);
-    const ClipperLib::cInt u0 = to_int(lo[0]) - 1, u1 = to_int(hi[0]) + 1;
+    row.min[v] = g.lines[v][std::size_t(b)];
+    row.max[v] = g.lines[v][std::size_t(b) + 1];
     ClipperLib::Clipper clip;
     clip.AddPaths(outline, ClipperLib::ptSubject, true);
-    clip.AddPath({{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}}, ClipperLib::ptClip, true);
+    clip.AddPath(rect_path(row, axis), ClipperLib::ptClip, true);
     ClipperLib::Paths pieces;
     clip.Execute(ClipperLib::ctIntersection, pieces, ClipperLib::pftEvenOdd, ClipperLib::pftNonZero);
     idx[v] = b;
@@ -320,7 +309,7 @@ void parts_under_portal(const Grid& g, const Portal& p, bool max_side, std::vect
         a0 = std::min(a0, q.X);
         a1 = std::max(a1, q.X);
       }
-      const auto ru = voxel_range(g, u, double(a0) / kClipperScale, double(a1) / kClipperScale);
+      const auto ru = voxel_range(g, u, double(a0) / kAxialClipperScale, double(a1) / kAxialClipperScale);
       for (int a = ru[0]; a <= ru[1]; ++a) {
         idx[u] = a;
         const std::int32_t r = g.region[g.index(idx[0], idx[1], idx[2])];
