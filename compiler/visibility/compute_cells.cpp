@@ -123,7 +123,7 @@ std::string VisibilityResult::summary() const {
       "{} cells ({} outside; depth {}, {} candidate planes){}, {} portals, {} leaks, PVS avg {:.0f} worst {} "
       "of {} "
       "items; "
-      "flow {} steps, {} fallbacks to pairs ({} to might-see), {} occluded; {} sample rays; {} back faces "
+      "flow {} steps, {} portals past budget ({} to might-see), {} occluded; {} sample rays; {} back faces "
       "dropped; "
       "proofs {} tried, {} hidden, {} seen, {} undecided in {} pairs{}; "
       "partition {:.2f} s portals {:.2f} s pvs {:.2f} s (proofs {:.2f} s)",

@@ -33,7 +33,7 @@ struct VisibilityResult {
   std::vector<std::vector<std::uint32_t>> pvs;  // per cell, sorted item ids, by config.method (empty outside)
   std::vector<std::vector<std::uint32_t>> flow_cells;  // per cell, cells reached by portal flow (not Sampled)
   std::uint64_t flow_steps = 0;
-  std::uint32_t flow_fallbacks = 0;       // flows past flow_budget (items by portal pairs)
+  std::uint32_t flow_fallbacks = 0;       // portals' flows past flow_budget (items by portal pairs)
   std::uint32_t flow_cell_fallbacks = 0;  // ... whose cell-level flow ran past its budget too
   std::uint64_t flow_occluded = 0;        // polygon and portal tests an occluder inside a cell settled
   std::uint64_t sample_rays = 0;

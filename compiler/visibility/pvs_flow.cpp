@@ -1,6 +1,10 @@
 #include "compiler/visibility/pvs_flow.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
+#include <bit>
+#include <iterator>
 #include <utility>
 
 #include "common/parallel_for.hpp"
@@ -13,6 +17,9 @@ namespace {
 // A flow past its budget gets this many times the budget again for the cell-level flow, whose steps test
 // no items and prune far more.
 constexpr std::uint64_t kCellFlowBudgetFactor = 10;
+// Portals are flowed in waves of this many, each wave bounded by the flows of the waves before it: fixed,
+// not by thread count, so the PVS is the same whatever the threads.
+constexpr std::size_t kFlowWave = 32;
 // A clipped portal or source narrower than this (metres; ten times kPlaneEpsilon) is the band clipping keeps
 // along a plane: the sight lines through it lie in a plane that walls and floors meet edge on (the top of
 // a ground-storey wall under the floor above), and they light no pixel. Followed, they let a flow creep
@@ -32,6 +39,7 @@ struct Directed {
   // a flow may go on through it only while some cell both it and every portal before it might reach is
   // not done yet.
   Bits might;
+  std::uint32_t index = 0;  // in FlowGraph::directed
 };
 
 bool bit(const Bits& bits, std::uint32_t i) {
@@ -54,6 +62,7 @@ struct FlowGraph {
   std::vector<std::vector<std::uint32_t>> cells_of_polygon;
   std::vector<std::vector<Occluder>> occluders;  // per cell (empty without occluder culling)
   std::vector<Winding> corners;                  // per item: a detail cluster's box corners (else empty)
+  std::vector<const Directed*> directed;         // every directed portal, by Directed::index
 
   FlowGraph(const Partition& part, const PortalGraph& g, const std::vector<VisPolygon>& polygons,
             bool with_occluders)
@@ -86,22 +95,43 @@ struct FlowGraph {
         }
       }
     in.resize(part.cells.size());
-    for (const auto& cell_out : out)
-      for (const auto& d : cell_out) in[d.to].push_back(&d);
+    for (auto& cell_out : out)
+      for (auto& d : cell_out) {
+        in[d.to].push_back(&d);
+        d.index = static_cast<std::uint32_t>(directed.size());
+        directed.push_back(&d);
+      }
     cells_of_polygon.resize(polygons.size());
     for (std::uint32_t c = 0; c < part.cells.size(); ++c)
       for (const auto p : part.cell_polygons[c]) cells_of_polygon[p].push_back(c);
   }
 };
 
+// What sight lines through one directed portal reach (Quake vis's portalvis): the cells and the items
+// beyond it, out of the cell it leads from.
+struct PortalVis {
+  Bits cells;                        // one bit per cell reached
+  std::vector<std::uint32_t> items;  // items seen (sorted)
+  std::uint64_t steps = 0, occluded = 0;
+  bool fell_back = false;       // the flow ran past its budget: cells by a cell flow, items by portal pairs
+  bool cell_fell_back = false;  // ... whose cell flow did too: all the portal might see
+};
+
 class Flow {
  public:
+  // `complete`: per directed portal, whether `vis` holds its finished flow (read only while this runs).
   Flow(const Partition& part, const FlowGraph& graph, const std::vector<VisPolygon>& polys,
-       const FlowOptions& options)
-      : part_(part), graph_(graph), polys_(polys), budget_(options.budget), cull_(options.cull_back_faces) {}
+       const FlowOptions& options, const std::vector<PortalVis>& vis, const std::vector<char>& complete)
+      : part_(part),
+        graph_(graph),
+        polys_(polys),
+        vis_(vis),
+        complete_(complete),
+        budget_(options.budget),
+        cull_(options.cull_back_faces) {}
 
-  void run(std::uint32_t cell, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& visible,
-           std::uint64_t& steps, std::uint64_t& occluded, bool& fell_back, bool& cell_fell_back) {
+  // The flow through `source` alone: every sequence that starts with it.
+  PortalVis run(const Directed& source) {
     occluded_ = 0;
     seen_cell_.assign(part_.cells.size(), 0);
     seen_poly_.assign(polys_.size(), 0);
@@ -111,43 +141,41 @@ class Flow {
       unseen_in_cell_[c] = static_cast<std::uint32_t>(part_.cell_polygons[c].size());
     on_stack_.assign(part_.cells.size(), 0);
     steps_ = 0;
-    mark_all(cell);
-    on_stack_[cell] = 1;
-    for (const auto& d : graph_.out[cell]) {
-      if (all_done(d.might)) continue;
-      source_plane_ = d.plane;
-      recurse(d.to, *d.winding, nullptr, nullptr, d.might);
-      if (steps_ > budget_) break;
-    }
-    fell_back = steps_ > budget_;
-    if (fell_back) {
+    on_stack_[source.from] = 1;  // cells are convex: a sight line leaving one never comes back
+    PortalVis out;
+    source_plane_ = source.plane;
+    recurse(source.to, *source.winding, nullptr, nullptr, source.might);
+    out.fell_back = steps_ > budget_;
+    if (out.fell_back) {
       // Too many sequences to test every item along each: find the cells by a flow that stops where no new
       // cell can be reached, then test the items of each reached cell by portal pairs.
-      steps += steps_;
+      out.steps += steps_;
       steps_ = 0;
       reached_.assign(done_.size(), 0);
       for (std::uint32_t c = 0; c < seen_cell_.size(); ++c)
         if (seen_cell_[c]) set_bit(reached_, c);
       const std::uint64_t cell_budget = budget_ * kCellFlowBudgetFactor;
-      for (const auto& d : graph_.out[cell]) {
-        if (subset(d.might, reached_)) continue;
-        source_plane_ = d.plane;
-        recurse_cells(d.to, *d.winding, nullptr, d.might, cell_budget);
-        if (steps_ > cell_budget) break;
-      }
-      cell_fell_back = steps_ > cell_budget;
-      if (cell_fell_back) might_see_all(cell);
-      items_by_pairs(cell);
+      recurse_cells(source.to, *source.winding, nullptr, source.might, cell_budget);
+      out.cell_fell_back = steps_ > cell_budget;
+      if (out.cell_fell_back) might_see_all(source);
+      items_by_pairs(source);
     }
-    steps += steps_;
-    occluded += occluded_;
+    out.steps += steps_;
+    out.occluded = occluded_;
+    out.cells.assign(done_.size(), 0);
     for (std::uint32_t c = 0; c < seen_cell_.size(); ++c)
-      if (seen_cell_[c]) cells.push_back(c);
+      if (seen_cell_[c]) set_bit(out.cells, c);
     for (std::uint32_t p = 0; p < seen_poly_.size(); ++p)
-      if (seen_poly_[p]) visible.push_back(p);
+      if (seen_poly_[p]) out.items.push_back(p);
+    return out;
   }
 
  private:
+  // The cells a sight line through d may reach: those its finished flow reached, else its might-see set
+  // (Quake vis's trick: portals are flowed in order of fewest might-see cells, so the flows through the
+  // narrow portals are done when the wide ones pass them, and bound them far more tightly).
+  const Bits& bound_of(const Directed& d) const { return complete_[d.index] ? vis_[d.index].cells : d.might; }
+
   bool all_done(const Bits& cells) const {
     for (std::size_t w = 0; w < cells.size(); ++w)
       if (cells[w] & ~done_[w]) return false;
@@ -165,21 +193,16 @@ class Flow {
     for (const auto c : graph_.cells_of_polygon[p])
       if (--unseen_in_cell_[c] == 0 && seen_cell_[c]) set_bit(done_, c);
   }
-  void mark_all(std::uint32_t c) {
-    see_cell(c);
-    for (const auto p : part_.cell_polygons[c]) see_polygon(p);
-  }
 
-  // Past the cell flow's budget too: every cell that a sight line through one of the cell's portals might
-  // reach. Conservative (each might-see set holds every cell such a sight line can reach), and tighter than
-  // a flood through every portal.
-  void might_see_all(std::uint32_t cell) {
-    for (const auto& d : graph_.out[cell])
-      for (std::uint32_t c = 0; c < part_.cells.size(); ++c)
-        if (bit(d.might, c)) {
-          see_cell(c);
-          set_bit(reached_, c);
-        }
+  // Past the cell flow's budget too: every cell that a sight line through the portal might reach.
+  // Conservative (the might-see set holds every cell such a sight line can reach), and tighter than a flood
+  // through every portal.
+  void might_see_all(const Directed& source) {
+    for (std::uint32_t c = 0; c < part_.cells.size(); ++c)
+      if (bit(source.might, c)) {
+        see_cell(c);
+        set_bit(reached_, c);
+      }
   }
 
   static bool subset(const Bits& a, const Bits& b) {
@@ -206,7 +229,8 @@ class Flow {
     Bits next_might(might.size());
     for (const auto& d : graph_.out[cell]) {
       if (on_stack_[d.to]) continue;
-      for (std::size_t w = 0; w < might.size(); ++w) next_might[w] = might[w] & d.might[w];
+      const Bits& through = bound_of(d);
+      for (std::size_t w = 0; w < might.size(); ++w) next_might[w] = might[w] & through[w];
       if (subset(next_might, reached_)) continue;
       Winding target, narrowed;
       if (!step_through(d, cell, source, pass, seps, light, target, narrowed)) continue;
@@ -225,40 +249,38 @@ class Flow {
            !occluded(outline(p), cell, light);
   }
 
-  // The items of each reached cell, tested by portal pairs. A sight line from `cell` to a point of another
-  // cell Z leaves through one of the cell's portals d and enters Z last through a portal e from a reached
-  // cell, so the point lies where lines through both d and e go on past e: in front of the planes
-  // separating d and e, of e and of d. Every such pair is tried (not only the sequences the cell flow
-  // followed), which keeps the set conservative while the flow prunes; it is looser than testing along each
-  // sequence, since the portals between d and e narrow nothing.
-  void items_by_pairs(std::uint32_t cell) {
+  // The items of each reached cell, tested by portal pairs. A sight line through `d` to a point of another
+  // cell Z enters Z last through a portal e from a reached cell, so the point lies where lines through both
+  // d and e go on past e: in front of the planes separating d and e, of e and of d. Every such pair is
+  // tried (not only the sequences the cell flow followed), which keeps the set conservative while the flow
+  // prunes; it is looser than testing along each sequence, since the portals between d and e narrow
+  // nothing.
+  void items_by_pairs(const Directed& d) {
     std::vector<Plane> planes;
     for (std::uint32_t z = 0; z < part_.cells.size(); ++z) {
-      if (!bit(reached_, z) || z == cell || unseen_in_cell_[z] == 0) continue;
+      if (!bit(reached_, z) || z == d.from || unseen_in_cell_[z] == 0) continue;
       for (const Directed* e : graph_.in[z]) {
-        if (e->from != cell && !bit(reached_, e->from)) continue;
-        if (e->from == cell) {
-          // e is one of the cell's own portals: everything past it may be seen.
+        if (e == &d) {
+          // Just past d: everything in front of it may be seen.
           planes.assign(1, e->plane);
           for (const auto p : part_.cell_polygons[z])
             if (!seen_poly_[p] && seen_through(p, planes, z, *e->winding)) see_polygon(p);
           continue;
         }
-        for (const auto& d : graph_.out[cell]) {
-          if (!bit(d.might, e->from) || !bit(d.might, z)) continue;
-          const Winding source = clip_front(*d.winding, e->plane.flipped());
-          if (winding_width(source) < kSliverWidth) continue;
-          const Winding target = clip_front(*e->winding, d.plane);
-          if (winding_width(target) < kSliverWidth) continue;
-          planes.clear();
-          separating_planes(source, target, false, planes);
-          separating_planes(target, source, true, planes);
-          planes.push_back(e->plane);
-          planes.push_back(d.plane);
-          for (const auto p : part_.cell_polygons[z])
-            if (!seen_poly_[p] && seen_through(p, planes, z, target)) see_polygon(p);
-          if (unseen_in_cell_[z] == 0) break;
-        }
+        // A sight line through d leaves d's cell for good (cells are convex).
+        if (e->from == d.from || !bit(reached_, e->from)) continue;
+        if (!bit(d.might, e->from) || !bit(d.might, z)) continue;
+        const Winding source = clip_front(*d.winding, e->plane.flipped());
+        if (winding_width(source) < kSliverWidth) continue;
+        const Winding target = clip_front(*e->winding, d.plane);
+        if (winding_width(target) < kSliverWidth) continue;
+        planes.clear();
+        separating_planes(source, target, false, planes);
+        separating_planes(target, source, true, planes);
+        planes.push_back(e->plane);
+        planes.push_back(d.plane);
+        for (const auto p : part_.cell_polygons[z])
+          if (!seen_poly_[p] && seen_through(p, planes, z, target)) see_polygon(p);
         if (unseen_in_cell_[z] == 0) break;
       }
     }
@@ -344,7 +366,8 @@ class Flow {
     Bits next_might(might.size());
     for (const auto& d : graph_.out[cell]) {
       if (on_stack_[d.to]) continue;
-      for (std::size_t w = 0; w < might.size(); ++w) next_might[w] = might[w] & d.might[w];
+      const Bits& through = bound_of(d);
+      for (std::size_t w = 0; w < might.size(); ++w) next_might[w] = might[w] & through[w];
       if (all_done(next_might)) continue;
       Winding target, narrowed;
       if (!step_through(d, cell, source, pass, seps, light, target, narrowed)) continue;
@@ -357,6 +380,8 @@ class Flow {
   const Partition& part_;
   const FlowGraph& graph_;
   const std::vector<VisPolygon>& polys_;
+  const std::vector<PortalVis>& vis_;
+  const std::vector<char>& complete_;
   std::uint64_t budget_;
   bool cull_;
   std::uint64_t occluded_ = 0;
@@ -376,24 +401,61 @@ FlowPvs portal_flow_pvs(const Partition& partition, const PortalGraph& graph,
   const std::size_t n = partition.cells.size();
   r.cells.resize(n);
   r.polygons.resize(n);
-  std::vector<std::uint64_t> steps(n, 0), occluded(n, 0);
-  std::vector<char> fell(n, 0), cell_fell(n, 0);
   const FlowGraph flow_graph(partition, graph, polygons, options.occluders);
-  Progress progress("cells: visibility flow", n, "cells");
+  // The portals out of the cells flows start in, fewest might-see cells first.
+  std::vector<const Directed*> order;
+  for (const Directed* d : flow_graph.directed)
+    if (options.sources.empty() || options.sources[d->from]) order.push_back(d);
+  auto might_count = [](const Directed* d) {
+    std::size_t k = 0;
+    for (const auto w : d->might) k += std::size_t(std::popcount(w));
+    return k;
+  };
+  std::vector<std::size_t> counts(flow_graph.directed.size());
+  for (const Directed* d : order) counts[d->index] = might_count(d);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](const Directed* a, const Directed* b) { return counts[a->index] < counts[b->index]; });
+  std::vector<PortalVis> vis(flow_graph.directed.size());
+  std::vector<char> complete(flow_graph.directed.size(), 0);
+  Progress progress("cells: visibility flow", order.size(), "portals");
+  for (std::size_t first = 0; first < order.size(); first += kFlowWave) {
+    const std::size_t last = std::min(order.size(), first + kFlowWave);
+    parallel_for(last - first, options.threads, [&](std::size_t k) {
+      const Directed& d = *order[first + k];
+      Flow flow(partition, flow_graph, polygons, options, vis, complete);
+      vis[d.index] = flow.run(d);
+      progress.advance();
+    });
+    for (std::size_t k = first; k < last; ++k) complete[order[k]->index] = 1;
+  }
+  // A cell sees itself and what its portals see.
   parallel_for(n, options.threads, [&](std::size_t c) {
-    progress.advance();
     if (!options.sources.empty() && !options.sources[c]) return;
-    Flow flow(partition, flow_graph, polygons, options);
-    bool fb = false, cell_fb = false;
-    flow.run(static_cast<std::uint32_t>(c), r.cells[c], r.polygons[c], steps[c], occluded[c], fb, cell_fb);
-    fell[c] = fb;
-    cell_fell[c] = cell_fb;
+    Bits cells((n + 63) / 64, 0);
+    set_bit(cells, static_cast<std::uint32_t>(c));
+    std::vector<std::uint32_t> items = partition.cell_polygons[c];
+    std::sort(items.begin(), items.end());
+    for (const auto& d : flow_graph.out[c]) {
+      const PortalVis& v = vis[d.index];
+      for (std::size_t w = 0; w < cells.size(); ++w) cells[w] |= v.cells[w];
+      std::vector<std::uint32_t> both;
+      std::set_union(items.begin(), items.end(), v.items.begin(), v.items.end(), std::back_inserter(both));
+      items = std::move(both);
+    }
+    for (std::uint32_t x = 0; x < n; ++x)
+      if (bit(cells, x)) r.cells[c].push_back(x);
+    r.polygons[c] = std::move(items);
   });
-  for (std::size_t c = 0; c < n; ++c) {
-    r.steps += steps[c];
-    r.occluded += occluded[c];
-    r.fallbacks += fell[c];
-    r.cell_fallbacks += cell_fell[c];
+  for (const Directed* d : order) {
+    const PortalVis& v = vis[d->index];
+    r.steps += v.steps;
+    r.occluded += v.occluded;
+    r.fallbacks += v.fell_back;
+    r.cell_fallbacks += v.cell_fell_back;
+    if (v.fell_back)
+      spdlog::debug("visibility: the flow through portal {} out of cell {} ran past {} steps{}", d->index,
+                    d->from, options.budget,
+                    v.cell_fell_back ? " (its cell flow too: all it might see)" : "");
   }
   return r;
 }
