@@ -160,6 +160,7 @@ OpeningStats cut_openings(model::Model& model, double tolerance) {
   std::vector<bool> drop(model.polygons.size(), false);
   for (std::size_t k = 0; k < cutters.size(); ++k) {
     const bool opening = model.polygons[cutters[k]].role == model::Role::Opening;
+    if (matched[k]) stats.frame_groups.push_back(model.polygons[cutters[k]].group);
     if (!matched[k]) {
       ++stats.unmatched;
     } else if (opening) {
@@ -169,6 +170,9 @@ OpeningStats cut_openings(model::Model& model, double tolerance) {
       ++stats.glass_cut;
     }
   }
+  std::sort(stats.frame_groups.begin(), stats.frame_groups.end());
+  stats.frame_groups.erase(std::unique(stats.frame_groups.begin(), stats.frame_groups.end()),
+                           stats.frame_groups.end());
   std::vector<model::Polygon> result;
   result.reserve(model.polygons.size() + stats.hosts_cut);
   for (std::size_t i = 0; i < model.polygons.size(); ++i) {

@@ -3,6 +3,8 @@
 // separate faces coplanar with (and inside) their host wall; after cutting, an opening is a hole in the wall
 // (and its face is dropped), a window is a hole filled by its own glass polygon.
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "model/model.hpp"
 
@@ -24,6 +26,9 @@ struct OpeningStats {
   std::size_t glass_cut = 0;     // Role::Glass faces cut out of a host (and kept)
   std::size_t unmatched = 0;     // opening/glass faces with no coplanar host (kept as they are)
   std::size_t glass_inset = 0;   // of glass_cut: recessed behind their host's plane, cut from its projection
+  // Groups (Model::groups) of the opening and glass faces cut out of a host, sorted: a door's or window's
+  // frame (jambs, lintel, sill, reveals) lines a hole in the shell, so the cells stage takes it as shell.
+  std::vector<std::uint32_t> frame_groups;
 };
 
 OpeningStats cut_openings(model::Model& model, double tolerance = kCoplanarTolerance);

@@ -23,6 +23,7 @@ class CellsStage final : public Stage {
       vis.seeds.push_back(model::Vec3(l.position[0], l.position[1], l.position[2]) +
                           kSeedBelowLuminaire * model::Vec3(l.normal[0], l.normal[1], l.normal[2]));
     if (vis.use_solids) vis.solids = solid_volumes(s.model.solids);
+    vis.frame_groups = s.frame_groups;
     const auto counts = compute_cells(s.out, vis);
     return StageOutcome::ran(counts.polygons_in, counts.cells_out, counts.detail);
   }

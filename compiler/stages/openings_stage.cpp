@@ -19,7 +19,8 @@ class OpeningsStage final : public Stage {
     if (!needed) return StageOutcome::skipped("scene has no openings or glass");
     if (s.model.csg_merged) return StageOutcome::skipped("the importer's CSG left no face over another");
     const std::size_t before = s.model.polygons.size();
-    const auto c = cut_openings(s.model);
+    auto c = cut_openings(s.model);
+    s.frame_groups = std::move(c.frame_groups);
     return StageOutcome::ran(before, s.model.polygons.size(),
                              fmt::format("hosts cut {} openings {} glass {} unmatched {}", c.hosts_cut,
                                          c.openings_cut, c.glass_cut, c.unmatched));

@@ -32,6 +32,7 @@ struct CompileState {
   model::Model model;
   ImportReport imported;
   double weld_tolerance = 0.0;  // metres; clean-up's, which also sets what counts as a vertex on a seam
+  std::vector<std::uint32_t> frame_groups;  // the openings stage's (OpeningStats::frame_groups)
 
   model::BundleContents& out;
   // The mesh stage's, for the light stage.

@@ -72,6 +72,8 @@ std::vector<char> structure_polygons(const std::vector<VisPolygon>& polygons,
     Kind kind = Kind::BySize;
     if (config.structure_groups && std::regex_search(name, *config.structure_groups))
       kind = Kind::Structure;
+    else if (std::binary_search(config.frame_groups.begin(), config.frame_groups.end(), group))
+      kind = Kind::Structure;
     else if (config.detail_groups && std::regex_search(name, *config.detail_groups))
       kind = Kind::NamedDetail;
     else {

@@ -33,7 +33,8 @@ struct VisItems {
 };
 
 // Is the polygon structure? Only polygons that block sight or are glass can be. A scene's `structure` /
-// `detail` patterns on its group name decide first. Otherwise a polygon smaller than config.detail_area is
+// `detail` patterns on its group name decide first; then a door's or window's frame (config.frame_groups) is
+// structure. Otherwise a polygon smaller than config.detail_area is
 // detail, and so is one of a group that is small (box under config.detail_extent) and made of small faces
 // (median under kShellFaceArea): an object. Glass is structure unless the `detail` pattern names it: it
 // closes the envelope.

@@ -202,6 +202,25 @@ TEST(Openings, DoorAtWallEdgeMakesNotchAndSplitWall) {
   EXPECT_NEAR(polygon_area(m.polygons[0]) + polygon_area(m.polygons[1]), 12.0 - 3.0, 1e-9);
 }
 
+// The groups of the faces cut out of a wall are its doors' and windows' frames; a face that found no wall
+// (here a pane standing free) names none.
+TEST(Openings, FrameGroupsAreTheGroupsOfTheFacesCut) {
+  model::Model m;
+  m.groups = {"wall", "door 1", "window 1", "glass screen"};
+  m.polygons.push_back(rectangle(0, 0, 6, 3, Role::Opaque));
+  m.polygons.push_back(rectangle(1, 0, 2, 2, Role::Opening));
+  m.polygons.back().group = 1;
+  m.polygons.push_back(rectangle(3, 1, 5, 2, Role::Glass));
+  m.polygons.back().group = 2;
+  Polygon free_pane = rectangle(1, 1, 2, 2, Role::Glass);
+  for (auto& v : free_pane.vertices) v.y += 1.0;  // a metre in front of the wall
+  free_pane.group = 3;
+  m.polygons.push_back(free_pane);
+  const OpeningStats stats = cut_openings(m);
+  EXPECT_EQ(stats.unmatched, 1u);
+  EXPECT_EQ(stats.frame_groups, (std::vector<std::uint32_t>{1, 2}));
+}
+
 TEST(Openings, FarOrTiltedFacesAreNotCut) {
   model::Model m;
   m.polygons.push_back(rectangle(0, 0, 4, 3, Role::Opaque));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <regex>
 #include <set>
 
@@ -109,6 +110,44 @@ TEST(StructureDetail, ASmallRoomOfWholeWallsIsStructureAnObjectOfFacetsIsNot) {
   config.detail_area = 0.0;
   structure = structure_polygons(polys, m.b.polygons, group_names(m), config);
   EXPECT_EQ(std::count(structure.begin(), structure.end(), 1), static_cast<std::ptrdiff_t>(end));
+}
+
+// A door through a hollow wall (two faces 0.2 m apart): its jambs and lintel are a small group of small
+// faces, detail by size. As detail they split no cell, and the door's passage shares a cell with the wall's
+// whole hollow core, through which sight lines creep on (on the generated M building up every storey's
+// walls). Named a frame (the openings stage names the groups it cut doors for) they are structure, and the
+// passage is a cell of its own, between the jambs and under the lintel.
+TEST(StructureDetail, ADoorFrameInAHollowWallIsStructure) {
+  MiniBuilding m;
+  m.room_inward({0, 0, 0}, {8.1, 4, 3});
+  m.rect_with_hole(0, 3.9, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0, -1);  // room A's side of the wall, facing A
+  m.rect_with_hole(0, 4.1, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);      // room B's side, facing B
+  const auto frame = static_cast<std::uint32_t>(m.b.polygons.size());
+  m.rect(1, 1.5, 0.0, 2.0, 3.9, 4.1);  // jambs (axis y: u = z, v = x), facing into the passage
+  m.rect(1, 2.5, 0.0, 2.0, 3.9, 4.1, model::Role::Opaque, -1);
+  m.rect(2, 2.0, 3.9, 4.1, 1.5, 2.5, model::Role::Opaque, -1);  // lintel, facing down
+  const auto end = static_cast<std::uint32_t>(m.b.polygons.size());
+  name_groups(m, {"shell", "door 1"});
+  put_in_group(m, frame, end, 1);
+  const model::Vec3 in_door{4.0, 2.0, 1.0};
+  for (const bool named : {false, true}) {
+    VisibilityConfig config = test_config(PvsMethod::Combined, true);
+    if (named) config.frame_groups = {1};
+    const VisibilityResult vis =
+        compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config, group_names(m));
+    EXPECT_EQ(vis.structure_items, named ? end : frame) << "named " << named;
+    const Box& passage = vis.partition.cells[locate(vis.partition.nodes, in_door)];
+    if (named) {
+      EXPECT_GE(passage.min.y, 1.5 - 1e-9);
+      EXPECT_LE(passage.max.y, 2.5 + 1e-9);
+      EXPECT_LE(passage.max.z, 2.0 + 1e-9);
+    } else {
+      EXPECT_GT(passage.max.y - passage.min.y, 3.0) << "the passage holds the whole core";
+    }
+    std::vector<std::uint32_t> all(vis.partition.cells.size());
+    std::iota(all.begin(), all.end(), 0u);
+    EXPECT_EQ(testing::missed_pixels(m, vis, all, true), 0u) << "named " << named;
+  }
 }
 
 TEST(StructureDetail, GlassIsStructureEvenInASmallGroup) {

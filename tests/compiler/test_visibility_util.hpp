@@ -63,11 +63,12 @@ struct MiniBuilding {
 
   // Rectangle with a rectangular hole (the hole must lie inside), as up to four rectangles around it.
   void rect_with_hole(int axis, double coord, double u0, double u1, double v0, double v1, double hu0,
-                      double hu1, double hv0, double hv1) {
-    if (hu0 > u0) rect(axis, coord, u0, hu0, v0, v1);
-    if (hu1 < u1) rect(axis, coord, hu1, u1, v0, v1);
-    if (hv0 > v0) rect(axis, coord, hu0, hu1, v0, hv0);
-    if (hv1 < v1) rect(axis, coord, hu0, hu1, hv1, v1);
+                      double hu1, double hv0, double hv1, int facing = 1) {
+    const auto opaque = model::Role::Opaque;
+    if (hu0 > u0) rect(axis, coord, u0, hu0, v0, v1, opaque, facing);
+    if (hu1 < u1) rect(axis, coord, hu1, u1, v0, v1, opaque, facing);
+    if (hv0 > v0) rect(axis, coord, hu0, hu1, v0, hv0, opaque, facing);
+    if (hv1 < v1) rect(axis, coord, hu0, hu1, hv1, v1, opaque, facing);
   }
 
   // The six faces of a closed box room.
