@@ -40,6 +40,33 @@ TEST(Partition, AxialPlanesGroupCoplanarPolygons) {
   EXPECT_EQ(find_plane(planes, 0, 4.5), nullptr);
 }
 
+// A hall 12 m long, its far end a 1 m room behind a wall with a wide door, its length full of small panels:
+// the wall's plane has few polygons beyond it (poor balance) and scores under the threshold, yet it is
+// mostly wall, and a wall between rooms divides them into cells.
+TEST(Partition, APlaneMostlyWallSplitsWhateverItsBalance) {
+  MiniBuilding m;
+  m.rect(2, 0.0, 0, 12, 0, 4);
+  m.rect(2, 3.0, 0, 12, 0, 4);
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  m.rect(0, 12.0, 0, 4, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, 12);
+  m.rect(1, 4.0, 0, 3, 0, 12);
+  m.rect_with_hole(0, 11.0, 0, 4, 0, 3, 0.8, 3.2, 0.0, 2.0);  // 60 % wall
+  for (const double y : {0.5, 1.5, 2.5, 3.5})
+    for (int i = 0; i < 10; ++i) m.rect(1, y, 0.0, 1.0, 0.5 + i, 1.0 + i);  // panels (u = z, v = x)
+  const auto p = polys(m);
+  const auto planes = axial_planes(p);
+  std::vector<std::uint32_t> ids(p.size());
+  for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  const VisibilityConfig cfg;
+  const PlaneScore wall = score_plane(*find_plane(planes, 0, 11.0), Box{{0, 0, 0}, {12, 4, 3}}, ids, p, cfg);
+  EXPECT_NEAR(wall.occlusion, 0.6, 1e-6);
+  EXPECT_LT(wall.priority, cfg.threshold) << "balance " << wall.balance << " split " << wall.split;
+  const Partition part = build_partition(p, cfg);
+  EXPECT_NE(locate(part.nodes, {10.5, 2.0, 1.0}), locate(part.nodes, {11.5, 2.0, 1.0}))
+      << part.cells.size() << " cells";
+}
+
 TEST(Partition, OcclusionIsTheCoveredFraction) {
   const auto p = polys(two_rooms(true));
   const auto planes = axial_planes(p);
@@ -113,7 +140,16 @@ TEST(Partition, ThresholdAndDepthStopTheRecursion) {
   const auto p = polys(two_rooms(true));
   VisibilityConfig high;
   high.threshold = 0.99;
-  EXPECT_EQ(build_partition(p, high).cells.size(), 1u);
+  EXPECT_EQ(build_partition(p, high).cells.size(), 2u) << "a wall with a door is mostly wall: it splits";
+  MiniBuilding arch;  // the two rooms, the wall between them an arch: 37.5 % wall
+  arch.rect(2, 0.0, 0, 8, 0, 4);
+  arch.rect(2, 3.0, 0, 8, 0, 4);
+  arch.rect(0, 0.0, 0, 4, 0, 3);
+  arch.rect(0, 8.0, 0, 4, 0, 3);
+  arch.rect(1, 0.0, 0, 3, 0, 8);
+  arch.rect(1, 4.0, 0, 3, 0, 8);
+  arch.rect_with_hole(0, 4.0, 0, 4, 0, 3, 0.5, 3.5, 0.0, 2.5);
+  EXPECT_EQ(build_partition(polys(arch), high).cells.size(), 1u);
   VisibilityConfig shallow;
   shallow.max_depth = 0;
   const Partition one = build_partition(p, shallow);

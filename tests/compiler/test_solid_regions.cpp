@@ -67,7 +67,7 @@ TEST(SolidVolumes, SectionsAndContainmentIncludingDegenerateContacts) {
   EXPECT_TRUE(solid_volumes(std::vector{flat}).empty());
 }
 
-// Two rooms, 4 m and 4 m, on either side of a 0.4 m wall that one cell straddles (the threshold keeps the
+// Two rooms, 4 m and 4 m, on either side of a 0.4 m wall that one cell straddles (no split keeps the
 // model one cell). `gap` opens a 1 m doorway through the wall; `seam` builds the wall of two wedges meeting
 // along a slanted plane, which no voxel lies wholly inside one of.
 struct TwoRooms {
@@ -88,7 +88,7 @@ struct TwoRooms {
   }
   VisibilityResult compute() const {
     VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
-    c.threshold = 1.0;  // one cell
+    c.max_depth = 0;  // one cell
     c.solids = solid_volumes(solids);
     c.seeds = {{2, 2, 1.5}};
     return compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
@@ -110,7 +110,7 @@ TEST(OpenRegions, AWallInsideOneCellSplitsItAndTheFarRoomLeavesThePvs) {
   EXPECT_FALSE(sees_room_b(r));
   // Without solids the cell is convex open space and sees both rooms.
   VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
-  c.threshold = 1.0;
+  c.max_depth = 0;
   const TwoRooms plain(false, false);
   const VisibilityResult open =
       compute_visibility(plain.m.b.vertices, plain.m.b.indices, plain.m.b.polygons, c);
@@ -204,7 +204,7 @@ TEST(OpenRegions, SpaceTouchingTheRoomOnlyAlongAnEdgeStaysApart) {
   const std::vector<model::Solid> solids{box_solid({1.5, 0, 0}, {2, 1.5, 3}),
                                          prism({{2, 1.5}, {4, 3.5}, {4, 4}, {2, 4}}, 0, 3)};
   VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
-  c.threshold = 1.0;  // one cell
+  c.max_depth = 0;  // one cell
   c.solids = solid_volumes(solids);
   c.seeds = {{0.7, 2, 1.5}};
   const VisibilityResult r = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
