@@ -19,6 +19,10 @@ constexpr double kSideTolerance = 1e-4;
 // storey of the generated M building (18 x 12 m, its rooms, their walls and the outside beyond them) one
 // cell, its best plane 60 % wall at priority 0.58. Half: most of the section is wall, the rest doorways.
 constexpr double kDividingWall = 0.5;
+// ... when it leaves at least this much room on each side (metres): a wall between rooms, not one of the
+// faces a cluttered level has every few decimetres. Without it E1M1 got slabs of cells 0.4 m thick, and a
+// pixel seen through one's portal was missed at `walk verify`'s CI size (cause not traced).
+constexpr double kDividingWallRoom = 1.0;
 
 Box bounds_of(const std::vector<VisPolygon>& polygons) {
   model::Bounds b;
@@ -117,7 +121,10 @@ Partition build_partition(const std::vector<VisPolygon>& polygons, const Visibil
         // whatever its priority.
         const PlaneScore s =
             score_plane(plane, box, ids, polygons, config, best ? best_score.priority : -1.0);
-        const bool qualifies = s.priority > config.threshold || s.occlusion >= kDividingWall;
+        const bool dividing = s.occlusion >= kDividingWall &&
+                              plane.coord - box.min[plane.axis] >= kDividingWallRoom &&
+                              box.max[plane.axis] - plane.coord >= kDividingWallRoom;
+        const bool qualifies = s.priority > config.threshold || dividing;
         if (qualifies && (!best || s.priority > best_score.priority)) {
           best = &plane;
           best_score = s;

@@ -2,8 +2,8 @@
 // Airey's model-space subdivision: candidate axial splitting planes taken from the model's axial polygons,
 // (structure only: VisPolygon::detail items are neither candidates nor counted) each scored by partition
 // priority = w_o*occlusion + w_b*balance + w_s*split (each 0..1), recursing on the
-// best plane until none scores above the threshold (or is at least half wall: kDividingWall in
-// partition.cpp) or the depth limit is reached. Leaves are cells.
+// best plane until none scores above the threshold (or is at least half wall with room on both sides:
+// kDividingWall in partition.cpp) or the depth limit is reached. Leaves are cells.
 #include <cstdint>
 #include <vector>
 

@@ -40,17 +40,17 @@ TEST(Partition, AxialPlanesGroupCoplanarPolygons) {
   EXPECT_EQ(find_plane(planes, 0, 4.5), nullptr);
 }
 
-// A hall 12 m long, its far end a 1 m room behind a wall with a wide door, its length full of small panels:
-// the wall's plane has few polygons beyond it (poor balance) and scores under the threshold, yet it is
-// mostly wall, and a wall between rooms divides them into cells.
+// A hall 12.5 m long, its far end a 1.5 m room behind a wall with a wide door, its length full of small
+// panels: the wall's plane has few polygons beyond it (poor balance) and scores under the threshold, yet it
+// is mostly wall, and a wall between rooms divides them into cells.
 TEST(Partition, APlaneMostlyWallSplitsWhateverItsBalance) {
   MiniBuilding m;
-  m.rect(2, 0.0, 0, 12, 0, 4);
-  m.rect(2, 3.0, 0, 12, 0, 4);
+  m.rect(2, 0.0, 0, 12.5, 0, 4);
+  m.rect(2, 3.0, 0, 12.5, 0, 4);
   m.rect(0, 0.0, 0, 4, 0, 3);
-  m.rect(0, 12.0, 0, 4, 0, 3);
-  m.rect(1, 0.0, 0, 3, 0, 12);
-  m.rect(1, 4.0, 0, 3, 0, 12);
+  m.rect(0, 12.5, 0, 4, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, 12.5);
+  m.rect(1, 4.0, 0, 3, 0, 12.5);
   m.rect_with_hole(0, 11.0, 0, 4, 0, 3, 0.8, 3.2, 0.0, 2.0);  // 60 % wall
   for (const double y : {0.5, 1.5, 2.5, 3.5})
     for (int i = 0; i < 10; ++i) m.rect(1, y, 0.0, 1.0, 0.5 + i, 1.0 + i);  // panels (u = z, v = x)
@@ -59,12 +59,26 @@ TEST(Partition, APlaneMostlyWallSplitsWhateverItsBalance) {
   std::vector<std::uint32_t> ids(p.size());
   for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
   const VisibilityConfig cfg;
-  const PlaneScore wall = score_plane(*find_plane(planes, 0, 11.0), Box{{0, 0, 0}, {12, 4, 3}}, ids, p, cfg);
+  const PlaneScore wall =
+      score_plane(*find_plane(planes, 0, 11.0), Box{{0, 0, 0}, {12.5, 4, 3}}, ids, p, cfg);
   EXPECT_NEAR(wall.occlusion, 0.6, 1e-6);
   EXPECT_LT(wall.priority, cfg.threshold) << "balance " << wall.balance << " split " << wall.split;
   const Partition part = build_partition(p, cfg);
   EXPECT_NE(locate(part.nodes, {10.5, 2.0, 1.0}), locate(part.nodes, {11.5, 2.0, 1.0}))
       << part.cells.size() << " cells";
+  // A plane that would leave less than a metre beyond it is a face of clutter, not a wall between rooms.
+  MiniBuilding slab;
+  slab.rect(2, 0.0, 0, 12.5, 0, 4);
+  slab.rect(2, 3.0, 0, 12.5, 0, 4);
+  slab.rect(0, 0.0, 0, 4, 0, 3);
+  slab.rect(0, 12.5, 0, 4, 0, 3);
+  slab.rect(1, 0.0, 0, 3, 0, 12.5);
+  slab.rect(1, 4.0, 0, 3, 0, 12.5);
+  slab.rect_with_hole(0, 11.7, 0, 4, 0, 3, 0.8, 3.2, 0.0, 2.0);  // 0.8 m before the end wall
+  for (const double y : {0.5, 1.5, 2.5, 3.5})
+    for (int i = 0; i < 10; ++i) slab.rect(1, y, 0.0, 1.0, 0.5 + i, 1.0 + i);
+  const Partition whole = build_partition(polys(slab), cfg);
+  EXPECT_EQ(locate(whole.nodes, {11.5, 2.0, 1.0}), locate(whole.nodes, {12.0, 2.0, 1.0}));
 }
 
 TEST(Partition, OcclusionIsTheCoveredFraction) {
