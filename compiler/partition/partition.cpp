@@ -117,13 +117,15 @@ Partition build_partition(const std::vector<VisPolygon>& polygons, const Visibil
         if (plane.coord < box.min[plane.axis] + config.min_cell_size ||
             plane.coord > box.max[plane.axis] - config.min_cell_size)
           continue;
-        // Until a plane qualifies, every plane's occlusion is wanted: one that is mostly wall qualifies
-        // whatever its priority.
-        const PlaneScore s =
-            score_plane(plane, box, ids, polygons, config, best ? best_score.priority : -1.0);
-        const bool dividing = s.occlusion >= kDividingWall &&
-                              plane.coord - box.min[plane.axis] >= kDividingWallRoom &&
-                              box.max[plane.axis] - plane.coord >= kDividingWallRoom;
+        // Until a plane qualifies, the occlusion of every plane with room on both sides is wanted: one that
+        // is mostly wall qualifies whatever its priority.
+        const bool room = plane.coord - box.min[plane.axis] >= kDividingWallRoom &&
+                          box.max[plane.axis] - plane.coord >= kDividingWallRoom;
+        const PlaneScore s = score_plane(plane, box, ids, polygons, config,
+                                         best   ? best_score.priority
+                                         : room ? -1.0
+                                                : config.threshold);
+        const bool dividing = room && s.occlusion >= kDividingWall;
         const bool qualifies = s.priority > config.threshold || dividing;
         if (qualifies && (!best || s.priority > best_score.priority)) {
           best = &plane;

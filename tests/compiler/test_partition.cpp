@@ -18,12 +18,7 @@ std::vector<VisPolygon> polys(const MiniBuilding& m) {
 // Two 4x4x3 rooms side by side along x, sharing the wall x = 4 (with a 1x2 door when `door`).
 MiniBuilding two_rooms(bool door) {
   MiniBuilding m;
-  m.rect(2, 0.0, 0, 8, 0, 4);  // floor (axis z: u = x, v = y)
-  m.rect(2, 3.0, 0, 8, 0, 4);  // ceiling
-  m.rect(0, 0.0, 0, 4, 0, 3);  // x = 0 (u = y, v = z)
-  m.rect(0, 8.0, 0, 4, 0, 3);
-  m.rect(1, 0.0, 0, 3, 0, 8);  // y = 0 (u = z, v = x)
-  m.rect(1, 4.0, 0, 3, 0, 8);
+  m.row_shell(8.0);
   if (door)
     m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);
   else
@@ -40,21 +35,21 @@ TEST(Partition, AxialPlanesGroupCoplanarPolygons) {
   EXPECT_EQ(find_plane(planes, 0, 4.5), nullptr);
 }
 
-// A hall 12.5 m long, its far end a 1.5 m room behind a wall with a wide door, its length full of small
-// panels: the wall's plane has few polygons beyond it (poor balance) and scores under the threshold, yet it
-// is mostly wall, and a wall between rooms divides them into cells.
-TEST(Partition, APlaneMostlyWallSplitsWhateverItsBalance) {
+// A hall 12.5 m long, its length full of small panels, its far end behind a wall at `wall_x`, 60 % wall
+// (a wide door).
+MiniBuilding hall_with_panels(double wall_x) {
   MiniBuilding m;
-  m.rect(2, 0.0, 0, 12.5, 0, 4);
-  m.rect(2, 3.0, 0, 12.5, 0, 4);
-  m.rect(0, 0.0, 0, 4, 0, 3);
-  m.rect(0, 12.5, 0, 4, 0, 3);
-  m.rect(1, 0.0, 0, 3, 0, 12.5);
-  m.rect(1, 4.0, 0, 3, 0, 12.5);
-  m.rect_with_hole(0, 11.0, 0, 4, 0, 3, 0.8, 3.2, 0.0, 2.0);  // 60 % wall
+  m.row_shell(12.5);
+  m.rect_with_hole(0, wall_x, 0, 4, 0, 3, 0.8, 3.2, 0.0, 2.0);
   for (const double y : {0.5, 1.5, 2.5, 3.5})
     for (int i = 0; i < 10; ++i) m.rect(1, y, 0.0, 1.0, 0.5 + i, 1.0 + i);  // panels (u = z, v = x)
-  const auto p = polys(m);
+  return m;
+}
+
+// The hall's far end a 1.5 m room: the wall's plane has few polygons beyond it (poor balance) and scores
+// under the threshold, yet it is mostly wall, and a wall between rooms divides them into cells.
+TEST(Partition, APlaneMostlyWallSplitsWhateverItsBalance) {
+  const auto p = polys(hall_with_panels(11.0));
   const auto planes = axial_planes(p);
   std::vector<std::uint32_t> ids(p.size());
   for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
@@ -67,17 +62,7 @@ TEST(Partition, APlaneMostlyWallSplitsWhateverItsBalance) {
   EXPECT_NE(locate(part.nodes, {10.5, 2.0, 1.0}), locate(part.nodes, {11.5, 2.0, 1.0}))
       << part.cells.size() << " cells";
   // A plane that would leave less than a metre beyond it is a face of clutter, not a wall between rooms.
-  MiniBuilding slab;
-  slab.rect(2, 0.0, 0, 12.5, 0, 4);
-  slab.rect(2, 3.0, 0, 12.5, 0, 4);
-  slab.rect(0, 0.0, 0, 4, 0, 3);
-  slab.rect(0, 12.5, 0, 4, 0, 3);
-  slab.rect(1, 0.0, 0, 3, 0, 12.5);
-  slab.rect(1, 4.0, 0, 3, 0, 12.5);
-  slab.rect_with_hole(0, 11.7, 0, 4, 0, 3, 0.8, 3.2, 0.0, 2.0);  // 0.8 m before the end wall
-  for (const double y : {0.5, 1.5, 2.5, 3.5})
-    for (int i = 0; i < 10; ++i) slab.rect(1, y, 0.0, 1.0, 0.5 + i, 1.0 + i);
-  const Partition whole = build_partition(polys(slab), cfg);
+  const Partition whole = build_partition(polys(hall_with_panels(11.7)), cfg);  // 0.8 m before the end
   EXPECT_EQ(locate(whole.nodes, {11.5, 2.0, 1.0}), locate(whole.nodes, {12.0, 2.0, 1.0}));
 }
 
@@ -156,12 +141,7 @@ TEST(Partition, ThresholdAndDepthStopTheRecursion) {
   high.threshold = 0.99;
   EXPECT_EQ(build_partition(p, high).cells.size(), 2u) << "a wall with a door is mostly wall: it splits";
   MiniBuilding arch;  // the two rooms, the wall between them an arch: 37.5 % wall
-  arch.rect(2, 0.0, 0, 8, 0, 4);
-  arch.rect(2, 3.0, 0, 8, 0, 4);
-  arch.rect(0, 0.0, 0, 4, 0, 3);
-  arch.rect(0, 8.0, 0, 4, 0, 3);
-  arch.rect(1, 0.0, 0, 3, 0, 8);
-  arch.rect(1, 4.0, 0, 3, 0, 8);
+  arch.row_shell(8.0);
   arch.rect_with_hole(0, 4.0, 0, 4, 0, 3, 0.5, 3.5, 0.0, 2.5);
   EXPECT_EQ(build_partition(polys(arch), high).cells.size(), 1u);
   VisibilityConfig shallow;

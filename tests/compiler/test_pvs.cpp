@@ -40,22 +40,10 @@ bool has(const std::vector<std::uint32_t>& v, std::uint32_t x) {
 }
 
 // Rooms (4x4x3) along x, walls between them at x = 4, 8, ...; `doors[i]` puts a 1x2 door in wall i.
-// The shell of a 4 m wide, 3 m high row `len` long along x: floor, ceiling, end and side walls. Returns
-// the far end wall (x = len).
-std::uint32_t row_shell(MiniBuilding& m, double len) {
-  m.rect(2, 0.0, 0, len, 0, 4);
-  m.rect(2, 3.0, 0, len, 0, 4);
-  m.rect(0, 0.0, 0, 4, 0, 3);
-  const auto end = m.rect(0, len, 0, 4, 0, 3);
-  m.rect(1, 0.0, 0, 3, 0, len);
-  m.rect(1, 4.0, 0, 3, 0, len);
-  return end;
-}
-
 MiniBuilding row_of_rooms(std::vector<bool> doors, std::vector<std::uint32_t>* far_wall = nullptr) {
   MiniBuilding m;
   const double len = 4.0 * double(doors.size() + 1);
-  const auto end = row_shell(m, len);
+  const auto end = m.row_shell(len);
   if (far_wall) far_wall->push_back(end);
   for (std::size_t i = 0; i < doors.size(); ++i) {
     const double x = 4.0 * double(i + 1);
@@ -148,7 +136,7 @@ TEST(Pvs, FlowPastItsBudgetTakesWhatItsPortalsMightSee) {
 // (taking every cell the portals might see, whole, put it in).
 TEST(Pvs, FlowPastItsBudgetTestsItemsByPortalPairs) {
   MiniBuilding m;
-  row_shell(m, 12.0);
+  m.row_shell(12.0);
   m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 0.2, 1.0, 0.0, 2.0);  // doors at opposite ends of their walls
   m.rect_with_hole(0, 8.0, 0, 4, 0, 3, 3.0, 3.8, 0.0, 2.0);
   const auto first_box = static_cast<std::uint32_t>(m.b.polygons.size());

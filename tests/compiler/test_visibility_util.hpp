@@ -61,6 +61,18 @@ struct MiniBuilding {
     }
   }
 
+  // The shell of a 4 m wide, 3 m high row `len` long along x: floor, ceiling, end and side walls. Returns
+  // the far end wall (x = len).
+  std::uint32_t row_shell(double len) {
+    rect(2, 0.0, 0, len, 0, 4);
+    rect(2, 3.0, 0, len, 0, 4);
+    rect(0, 0.0, 0, 4, 0, 3);
+    const auto end = rect(0, len, 0, 4, 0, 3);
+    rect(1, 0.0, 0, 3, 0, len);
+    rect(1, 4.0, 0, 3, 0, len);
+    return end;
+  }
+
   // Rectangle with a rectangular hole (the hole must lie inside), as up to four rectangles around it.
   void rect_with_hole(int axis, double coord, double u0, double u1, double v0, double v1, double hu0,
                       double hu1, double hv0, double hv1, int facing = 1) {
