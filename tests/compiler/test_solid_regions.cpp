@@ -237,5 +237,44 @@ TEST(OpenRegions, AnLShapedOpeningJoinsOnlyWhatLiesBehindIt) {
   EXPECT_EQ(r.regions, 3u);  // the room on each side, and the pocket
 }
 
+TEST(OpenRegions, AnOpeningEndingAtACorniceTopJoinsNotTheSpaceAboveIt) {
+  // A 4 x 4 x 4 m room split into two cells at y = 2. A ceiling slab (x 0..3.5, z 3..3.4) and a cornice
+  // along the x = 4 wall (its section the triangle (3.5, 3), (4, 3), (4, 2.5), top at z = 3) close a loft
+  // above the room; they meet along one edge. The slab's solid starts 4 um above z = 3 (a bundle face and
+  // its solid disagree by float noise), so the opening between the cells reaches 4 um past the grid line
+  // at the cornice's top, over the voxels of the loft beyond the slab's end. No sight line passes there:
+  // room and loft stay apart on both sides.
+  MiniBuilding m;
+  m.room_inward({0, 0, 0}, {4, 4, 4});
+  m.rect(1, 2.0, 0, 1, 0, 1);  // a panel in the plane y = 2, so the cells split there
+  std::vector<model::Solid> solids{box_solid({0, 0, 3.0 + 4e-6}, {3.5, 4, 3.4})};
+  // The cornice: a prism along y over the triangle in (x, z), faces wound outward.
+  model::Solid cornice;
+  const std::vector<std::array<double, 2>> tri{{3.5, 3.0}, {4.0, 2.5}, {4.0, 3.0}};  // clockwise in (x, z)
+  std::vector<Vec3> front, back;
+  for (const auto& p : tri) front.push_back({p[0], 0.0, p[1]});
+  for (auto it = tri.rbegin(); it != tri.rend(); ++it) back.push_back({(*it)[0], 4.0, (*it)[1]});
+  cornice.faces = {front, back};
+  for (std::size_t i = 0; i < tri.size(); ++i) {
+    const auto& a = tri[i];
+    const auto& b = tri[(i + 1) % tri.size()];
+    cornice.faces.push_back({{a[0], 0, a[1]}, {a[0], 4, a[1]}, {b[0], 4, b[1]}, {b[0], 0, b[1]}});
+  }
+  solids.push_back(cornice);
+  VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+  c.threshold = 0.0;
+  c.max_depth = 1;
+  c.solids = solid_volumes(solids);
+  ASSERT_EQ(c.solids.size(), 2u);
+  EXPECT_TRUE(solid_contains(c.solids[1], {3.9, 2.0, 2.9}, 0.0));   // the cornice, wound outward
+  EXPECT_FALSE(solid_contains(c.solids[1], {3.6, 2.0, 2.6}, 0.0));  // the room below its slope
+  c.seeds = {{1, 1, 1.5}};
+  const VisibilityResult r = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
+  ASSERT_EQ(r.partition.cells.size(), 2u);
+  ASSERT_EQ(std::min(r.partition.cells[0].max.y, r.partition.cells[1].max.y), 2.0);
+  EXPECT_EQ(r.regions, 4u);  // the room and the loft in each cell
+  EXPECT_TRUE(r.leaks.empty());
+}
+
 }  // namespace
 }  // namespace walk::compiler
