@@ -183,6 +183,7 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kPvs, c.pvs),
       pending(section::kClusters, c.clusters),
       pending(section::kLeakPath, c.leak_path),
+      pending(section::kVoidFacing, c.void_facing),
       pending(section::kClusterPolygons, c.cluster_polygons),
       pending(section::kLodIndices, c.lod_indices),
       pending(section::kLodRanges, c.lod_ranges),
@@ -337,6 +338,7 @@ void Bundle::validate() {
   get(section::kPvs, pvs_, true);
   get(section::kClusters, clusters_, false);
   get(section::kLeakPath, leak_path_, false);
+  get(section::kVoidFacing, void_facing_, false);
   get(section::kClusterPolygons, cluster_polygons_, false);
   get(section::kLodIndices, lod_indices_, false);
   get(section::kLodRanges, lod_ranges_, false);
@@ -444,6 +446,9 @@ void Bundle::validate() {
   for (const auto& p : leak_path_)
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       fail("LEAK holds a non-finite point");
+  for (std::size_t i = 0; i < void_facing_.size(); ++i)
+    if (void_facing_[i] >= polygons_.size() || (i > 0 && void_facing_[i] <= void_facing_[i - 1]))
+      fail("VOID holds a polygon out of range or out of order");
   for (std::size_t i = 0; i < cells_.size(); ++i)
     if ((cells_[i].flags & ~kCellOutside) != 0) fail("CELL " + std::to_string(i) + " has unknown flags");
   if (clusters_.empty() != cluster_polygons_.empty()) fail("CLUS and CLPO come together");

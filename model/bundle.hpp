@@ -41,8 +41,11 @@ struct BundleContents {
   std::vector<std::uint32_t> lod_indices;       // empty, or LODX
   std::vector<LodRangeRecord> lod_ranges;       // empty, or kLodLevels per cluster
   std::vector<std::array<float, 3>> leak_path;  // empty, or seed -> portals -> the largest leak (local)
-  std::vector<TextureRecord> textures;          // empty, or the albedo maps
-  std::vector<std::uint8_t> texels;             // TEXL
+  // Polygons (sorted) whose front only the void round a sealed level sees (qbsp's outside faces): with
+  // solids, the open regions an outside flood reaches and the inside one does not.
+  std::vector<std::uint32_t> void_facing;
+  std::vector<TextureRecord> textures;                 // empty, or the albedo maps
+  std::vector<std::uint8_t> texels;                    // TEXL
   std::vector<PolygonTextureRecord> polygon_textures;  // empty, or one per polygon
   std::vector<StageRecord> stages;
   std::string strings{'\0'};  // offset 0 is the empty string
@@ -97,6 +100,7 @@ class Bundle {
   [[nodiscard]] std::span<const std::uint32_t> pvs() const { return pvs_; }  // cluster ids
   [[nodiscard]] std::span<const ClusterRecord> clusters() const { return clusters_; }
   [[nodiscard]] std::span<const std::array<float, 3>> leak_path() const { return leak_path_; }
+  [[nodiscard]] std::span<const std::uint32_t> void_facing() const { return void_facing_; }
   [[nodiscard]] std::span<const std::uint32_t> cluster_polygons() const { return cluster_polygons_; }
   // Empty, or kLodLevels records per cluster over lod_indices().
   [[nodiscard]] std::span<const std::uint32_t> lod_indices() const { return lod_indices_; }
@@ -146,6 +150,7 @@ class Bundle {
   std::span<const std::uint32_t> pvs_;
   std::span<const ClusterRecord> clusters_;
   std::span<const std::array<float, 3>> leak_path_;
+  std::span<const std::uint32_t> void_facing_;
   std::span<const std::uint32_t> cluster_polygons_;
   std::span<const std::uint32_t> lod_indices_;
   std::span<const LodRangeRecord> lod_ranges_;

@@ -261,7 +261,9 @@ inline constexpr std::uint32_t kNodes = tag("NODE");
 inline constexpr std::uint32_t kPvs = tag("PVSL");       // cluster indices, per cell ranges
 inline constexpr std::uint32_t kPortals = tag("PORT");   // optional, see PortalRecord
 inline constexpr std::uint32_t kLeakPath = tag("LEAK");  // optional, float xyz: seed to the largest leak
-inline constexpr std::uint32_t kClusters = tag("CLUS");  // optional, see ClusterRecord
+// optional, u32 polygon indices (sorted): faces only the void round a sealed level sees
+inline constexpr std::uint32_t kVoidFacing = tag("VOID");
+inline constexpr std::uint32_t kClusters = tag("CLUS");         // optional, see ClusterRecord
 inline constexpr std::uint32_t kClusterPolygons = tag("CLPO");  // u32 polygon indices of the clusters
 inline constexpr std::uint32_t kLodIndices = tag("LODX");       // optional, u32 VERT ids, see LodRangeRecord
 inline constexpr std::uint32_t kLodRanges = tag("LODR");        // optional, kLodLevels per cluster

@@ -87,7 +87,7 @@ std::string first_missed(const VisibilityJudge& judge, const CellViews& views,
 
 int verify(const VerifyArgs& args) {
   const auto b = model::Bundle::open(args.bundle);
-  const VisibilityJudge j(b->vertices(), b->indices(), b->polygons(), args.options);
+  const VisibilityJudge j(b->vertices(), b->indices(), b->polygons(), args.options, b->void_facing());
   const BundleCells cells = bundle_cells(j.polygons(), b->cells(), args.options.cull_back_faces);
   const Partition& part = cells.partition;
   const PortalGraph& graph = cells.graph;

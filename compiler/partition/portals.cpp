@@ -63,8 +63,13 @@ FaceClosers face_closers(const Box& face, int axis, double coord, const Partitio
     ClipperLib::Clipper c;
     bool any = false;
     for (const auto& solid : solids) {
-      if (!solid.box.overlaps(face, 0.0)) continue;
-      ClipperLib::Path section = solid_section(solid, axis, coord);
+      // A solid ending within kPlaneEpsilon of the face closes it as one ending on it does: the face is the
+      // bundle's float, the solid the model's double (DM1: an arch's brush 1 um short of a cell face left
+      // its band open, joining the room below the arch to the void above it), and the open regions take
+      // the voxels beside the face as solid within the same tolerance.
+      if (!solid.box.overlaps(face, kPlaneEpsilon)) continue;
+      const double at = std::clamp(coord, solid.box.min[axis], solid.box.max[axis]);
+      ClipperLib::Path section = solid_section(solid, axis, at);
       if (section.empty()) continue;
       c.AddPath(section, ClipperLib::ptSubject, true);
       any = true;
@@ -120,6 +125,9 @@ PortalGraph find_portals(const Partition& part, const std::vector<VisPolygon>& p
         auto emit = [&](const ClipperLib::Paths& open, bool forward, bool backward) {
           ClipperLib::PolyTree tree;
           ClipperLib::Clipper un;
+          // Openings touching at a corner are separate portals (E1M1: a room's opening below a cornice and
+          // the void's above it): as one, its outline joined both parts behind it into one region.
+          un.StrictlySimple(true);
           un.AddPaths(open, ClipperLib::ptSubject, true);
           un.Execute(ClipperLib::ctUnion, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
           for (const ClipperLib::PolyNode* outer : tree.Childs) {

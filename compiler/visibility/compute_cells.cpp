@@ -132,10 +132,11 @@ std::string VisibilityResult::summary() const {
       regions == 0
           ? std::string()
           : fmt::format(
-                " in {} open regions ({:.1f} M voxels, {:.0f} % solid; {} portals inside solids)", regions,
-                double(region_voxels) * 1e-6,
+                " in {} open regions ({:.1f} M voxels, {:.0f} % solid; {} portals inside solids; {} items "
+                "facing the void)",
+                regions, double(region_voxels) * 1e-6,
                 100.0 * double(region_solid_voxels) / double(std::max<std::uint64_t>(1, region_voxels)),
-                region_portals_dropped),
+                region_portals_dropped, void_facing.size()),
       graph.portals.size(), leaks.size(), avg, worst, polygons.size(), flow_steps, flow_fallbacks,
       flow_cell_fallbacks, flow_occluded, sample_rays, back_faces_dropped, proofs.tried, proofs.hidden,
       proofs.visible, proofs.undecided, proofs.pairs,
@@ -192,6 +193,8 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     InsideFlood flood = flood_inside(view, view_graph, config.seeds, locate_seed, regions.has_value());
     view_inside = std::move(flood.inside);
     r.seeded = flood.seeds > 0;
+    if (regions && r.seeded)
+      r.void_facing = void_facing_items(*regions, r.partition, r.polygons, view_inside);
     if (r.seeded) {
       r.leaks = std::move(flood.leaks);
     } else {
@@ -379,6 +382,11 @@ CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfi
     spdlog::warn("visibility: leak to the outside, {:.4f} m2 at world {}{}", leak.area,
                  world(leak.points.back()), r.seeded ? "; path from inside: " + path : std::string());
   }
+  out.void_facing.clear();
+  for (const auto item : r.void_facing)
+    out.void_facing.insert(out.void_facing.end(), r.item_polygons[item].begin(), r.item_polygons[item].end());
+  std::sort(out.void_facing.begin(), out.void_facing.end());
+  out.void_facing.erase(std::unique(out.void_facing.begin(), out.void_facing.end()), out.void_facing.end());
   out.leak_path.clear();
   if (r.seeded && !r.leaks.empty())
     for (const auto& p : r.leaks.front().points)

@@ -30,6 +30,8 @@ struct VisibilityResult {
   std::size_t region_portals_dropped = 0;
   bool seeded = false;          // the flood had seeds
   std::vector<LeakPath> leaks;  // largest first; without seeds, every open part of the outer boundary
+  // With solids and seeds: opaque structure items whose front only the void sees (void_facing_items()).
+  std::vector<std::uint32_t> void_facing;
   std::vector<std::vector<std::uint32_t>> pvs;  // per cell, sorted item ids, by config.method (empty outside)
   std::vector<std::vector<std::uint32_t>> flow_cells;  // per cell, cells reached by portal flow (not Sampled)
   std::uint64_t flow_steps = 0;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <numeric>
 
 #include "common/parallel_for.hpp"
@@ -495,6 +496,53 @@ std::uint32_t OpenRegions::locate(std::uint32_t cell, const model::Vec3& p) cons
 bool OpenRegions::holds(std::uint32_t region, const model::Vec3& p) const {
   const Grid& g = grids[cell_of[region]];
   return g.region[g.index(g.at(0, p.x), g.at(1, p.y), g.at(2, p.z))] == static_cast<std::int32_t>(region);
+}
+
+std::vector<std::uint32_t> void_facing_items(const OpenRegions& regions, const Partition& cells,
+                                             const std::vector<VisPolygon>& polygons,
+                                             const std::vector<char>& inside) {
+  const PortalGraph& g = regions.graph;
+  const std::size_t n = regions.cell_of.size();
+  std::vector<char> outside(n, 0);
+  std::vector<std::uint32_t> queue;
+  for (const Leak& leak : g.leaks)
+    if (leak.cell < n && !outside[leak.cell]) {
+      outside[leak.cell] = 1;
+      queue.push_back(leak.cell);
+    }
+  for (std::size_t h = 0; h < queue.size(); ++h)
+    for (const auto id : g.cell_portals[queue[h]]) {
+      const Portal& p = g.portals[id];
+      const std::uint32_t d = p.back == queue[h] ? p.front : p.back;
+      if (!outside[d]) {
+        outside[d] = 1;
+        queue.push_back(d);
+      }
+    }
+  std::vector<std::uint32_t> out;
+  if (queue.empty()) return out;
+  for (std::uint32_t item = 0; item < polygons.size(); ++item) {
+    const VisPolygon& p = polygons[item];
+    if (p.detail || !p.opaque) continue;
+    bool walk = false, void_seen = false;
+    for (const auto& t : p.triangles) {
+      const model::Vec3 facing = glm::cross(t[1] - t[0], t[2] - t[0]);
+      if (glm::length(facing) <= 0.0) continue;
+      const model::Vec3 probe = (t[0] + t[1] + t[2]) / 3.0 + kVoidProbe * glm::normalize(facing);
+      if (!cells.bounds.contains(probe)) {  // out of the model's box: the outside
+        void_seen = true;
+        continue;
+      }
+      const std::uint32_t cell = locate(cells.nodes, probe);
+      const std::uint32_t region = regions.locate(cell, probe);
+      if (region >= n || !regions.holds(region, probe)) continue;
+      walk = walk || inside[region];
+      void_seen = void_seen || (outside[region] && !inside[region]);
+      if (walk) break;
+    }
+    if (void_seen && !walk) out.push_back(item);
+  }
+  return out;
 }
 
 }  // namespace walk::compiler

@@ -65,6 +65,16 @@ struct OpenRegions {
   std::vector<Grid> grids;  // per cell
 };
 
+// Opaque structure items (of `polygons`) whose front only the void sees, as qbsp's outside fill finds the
+// faces to drop: the void is the regions an outside flood reaches (from the openings of the model's
+// bounding box, through every portal) and the inside flood does not (`inside`, per region). An item is
+// void-facing when a point kVoidProbe in front of one of its triangles lies in the void or beyond the
+// model's box and none lies on the walk; a probe in a solid voxel says nothing. Sorted.
+inline constexpr double kVoidProbe = 0.02;  // metres: inside the first voxel before a face (kOpenVoxel)
+[[nodiscard]] std::vector<std::uint32_t> void_facing_items(const OpenRegions& regions, const Partition& cells,
+                                                           const std::vector<VisPolygon>& polygons,
+                                                           const std::vector<char>& inside);
+
 [[nodiscard]] OpenRegions open_regions(const Partition& partition, const PortalGraph& graph,
                                        const std::vector<VisPolygon>& polygons,
                                        std::span<const SolidVolume> solids, unsigned threads);

@@ -58,10 +58,14 @@ model::Vec3 inset_point(const Box& b, const model::Vec3& t) {
 
 VisibilityJudge::VisibilityJudge(std::span<const model::VertexRecord> vertices,
                                  std::span<const std::uint32_t> indices,
-                                 std::span<const model::PolygonRecord> polygons, const VerifyOptions& options)
+                                 std::span<const model::PolygonRecord> polygons, const VerifyOptions& options,
+                                 std::span<const std::uint32_t> void_facing)
     : options_(options), polygons_(vis_polygons(vertices, indices, polygons)) {
   std::vector<Triangle> triangles;
   glass_.resize(polygons_.size());
+  void_facing_.assign(polygons_.size(), 0);
+  for (const auto p : void_facing)
+    if (p < void_facing_.size()) void_facing_[p] = 1;
   for (std::uint32_t p = 0; p < polygons_.size(); ++p) {
     glass_[p] = polygons_[p].glass;
     for (const auto& t : polygons_[p].triangles) triangles.push_back({t[0], t[1], t[2], p});
@@ -214,7 +218,7 @@ bool VisibilityJudge::in_free_space(const model::Vec3& p) const {
     // The first opaque polygon on the sight line: glass is passed through (it may face either way).
     std::vector<std::uint32_t> ids;
     const RayHit stop = trace_through_glass(*caster_, ray, glass_, ids);
-    if (stop.hit() && !glass_[stop.polygon]) (stop.front ? front : back) += 1;
+    if (stop.hit() && !glass_[stop.polygon]) (stop.front && !void_facing_[stop.polygon] ? front : back) += 1;
   }
   return front > back;
 }

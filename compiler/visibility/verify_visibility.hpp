@@ -69,14 +69,17 @@ struct BundleCells {
 
 class VisibilityJudge {
  public:
+  // `void_facing` (the bundle's VOID): polygons only the void round a sealed level sees.
   VisibilityJudge(std::span<const model::VertexRecord> vertices, std::span<const std::uint32_t> indices,
-                  std::span<const model::PolygonRecord> polygons, const VerifyOptions& options);
+                  std::span<const model::PolygonRecord> polygons, const VerifyOptions& options,
+                  std::span<const std::uint32_t> void_facing = {});
   // `portal_eyes` (from portal_viewpoints) are looked from too, when options.portal_views is on.
   [[nodiscard]] CellViews views(const Box& cell, std::uint32_t cell_index,
                                 std::span<const model::Vec3> portal_eyes = {}) const;
   // Whether `p` lies in open space: of 14 sight lines (axes and cube diagonals), more meet the front of a
   // polygon than its back. Inside a solid, in a thick wall or outside a closed model, the first polygons
-  // met are seen from behind. Glass and sight lines that leave the model count for neither.
+  // met are seen from behind; in the void round a sealed level, they are void-facing and count as backs.
+  // Glass and sight lines that leave the model count for neither.
   [[nodiscard]] bool in_free_space(const model::Vec3& p) const;
   // Pixels of `views` whose sight line meets a polygon not in `pvs` (sorted ids).
   [[nodiscard]] std::uint64_t missed(const CellViews& views, const std::vector<std::uint32_t>& pvs) const;
@@ -88,6 +91,7 @@ class VisibilityJudge {
   VerifyOptions options_;
   std::vector<VisPolygon> polygons_;
   std::vector<char> glass_;
+  std::vector<char> void_facing_;
   std::unique_ptr<RayCaster> caster_;
 };
 

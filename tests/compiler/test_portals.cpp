@@ -1,6 +1,8 @@
 // Portals as real polygons, and the leak report.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "compiler/partition/portals.hpp"
 #include "test_visibility_util.hpp"
 
@@ -58,6 +60,32 @@ TEST(Portals, ZeroThicknessWallDoor) {
   const PortalGraph g = graph_of(door_in_wall(0.0));
   ASSERT_EQ(g.portals.size(), 1u);
   EXPECT_NEAR(g.portals[0].area, 2.0, 1e-6);
+}
+
+TEST(Portals, OpeningsTouchingAtACornerAreTwoPortals) {
+  // Two rooms along x; the wall between them (x = 4, (u, v) = (y, z)) is a slab over y 0..2, z 1..3, a
+  // cornice's triangle (2, 1), (4, 1), (4, 0) and a panel over y 2..4, z 2..3. What stays open is the
+  // opening under the slab and the cornice, and the gap y 2..4, z 1..2 above the cornice: they meet at the
+  // single point (2, 1). As one portal they would join whatever lies behind each (with solids, a room and
+  // the void beyond a cornice) though no sight line passes from one to the other.
+  MiniBuilding m;
+  m.rect(2, 0.0, 0, 8, 0, 4);
+  m.rect(2, 3.0, 0, 8, 0, 4);
+  m.rect(0, 0.0, 0, 4, 0, 3);
+  m.rect(0, 8.0, 0, 4, 0, 3);
+  m.rect(1, 0.0, 0, 3, 0, 8);
+  m.rect(1, 4.0, 0, 3, 0, 8);
+  m.rect(0, 4.0, 0, 2, 1, 3);
+  m.quad({4, 2, 1}, {4, 4, 0}, {4, 4, 1}, {4, 4, 1});  // the cornice's triangle
+  m.rect(0, 4.0, 2, 4, 2, 3);
+  Partition part;
+  const PortalGraph g = graph_of(m, &part);
+  ASSERT_EQ(part.cells.size(), 2u);
+  ASSERT_EQ(g.portals.size(), 2u);
+  std::vector<double> areas{g.portals[0].area, g.portals[1].area};
+  std::sort(areas.begin(), areas.end());
+  EXPECT_NEAR(areas[0], 2.0, 1e-6);  // the gap above the cornice
+  EXPECT_NEAR(areas[1], 3.0, 1e-6);  // the opening below: 2 x 1 and the triangle under the cornice
 }
 
 TEST(Portals, SealedWallHasNoPortal) {

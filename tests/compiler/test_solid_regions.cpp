@@ -10,6 +10,7 @@
 #include "compiler/partition/axial_cover.hpp"
 #include "compiler/partition/solid_volumes.hpp"
 #include "compiler/visibility/open_regions.hpp"
+#include "compiler/visibility/verify_visibility.hpp"
 #include "test_visibility_util.hpp"
 
 namespace walk::compiler {
@@ -160,6 +161,68 @@ TEST(OpenRegions, PortalsLoseThePartsInsideSolids) {
       ADD_FAILURE() << "a portal inside the wall";
     }
   }
+}
+
+TEST(OpenRegions, ASolidEndingMicrometresShortOfAFaceClosesIt) {
+  // Two cells meeting at x = 4.2 and a wall across them made of two solids that stop 2 um either side of
+  // that plane (a bundle face and a model's solid apart by float noise): sectioned at the plane itself,
+  // neither would close the face. Solids 0.1 m from it leave a real gap, and a portal.
+  Partition part;
+  part.cells = {Box{{0, 0, 0}, {4.2, 4, 3}}, Box{{4.2, 0, 0}, {8.4, 4, 3}}};
+  part.bounds = Box{{0, 0, 0}, {8.4, 4, 3}};
+  const std::vector<VisPolygon> none;
+  const auto portals_at = [&](double gap) {
+    const auto solids = solid_volumes(
+        std::vector{box_solid({4, 0, 0}, {4.2 - gap, 4, 3}), box_solid({4.2 + gap, 0, 0}, {4.4, 4, 3})});
+    return find_portals(part, none, true, solids).portals.size();
+  };
+  EXPECT_EQ(portals_at(2e-6), 0u);
+  EXPECT_EQ(portals_at(0.1), 1u);
+}
+
+TEST(OpenRegions, TheFacesOfASealedShellTowardsTheVoidAreVoidFacing) {
+  // A 4 x 4 x 3 m room inside a shell of 0.2 m solid walls, and a solid pillar 3.8 m beyond it, so the
+  // model's box holds void between them. The shell's faces are drawn both ways: into the room and out.
+  MiniBuilding m;
+  m.room_inward({0, 0, 0}, {4, 4, 3});
+  const auto first_outer = static_cast<std::uint32_t>(m.b.polygons.size());
+  const auto outward_box = [&m](const Vec3& lo, const Vec3& hi) {
+    for (int a = 0; a < 3; ++a) {
+      const int u = (a + 1) % 3, v = (a + 2) % 3;
+      m.rect(a, lo[a], lo[u], hi[u], lo[v], hi[v], model::Role::Opaque, -1);
+      m.rect(a, hi[a], lo[u], hi[u], lo[v], hi[v], model::Role::Opaque, 1);
+    }
+  };
+  outward_box({-0.2, -0.2, -0.2}, {4.2, 4.2, 3.2});
+  outward_box({8, 1, 0}, {9, 2, 3});
+  const auto end = static_cast<std::uint32_t>(m.b.polygons.size());
+  const std::vector<model::Solid> solids{box_solid({-0.2, -0.2, -0.2}, {4.2, 4.2, 0}),
+                                         box_solid({-0.2, -0.2, 3}, {4.2, 4.2, 3.2}),
+                                         box_solid({-0.2, -0.2, 0}, {0, 4.2, 3}),
+                                         box_solid({4, -0.2, 0}, {4.2, 4.2, 3}),
+                                         box_solid({0, -0.2, 0}, {4, 0, 3}),
+                                         box_solid({0, 4, 0}, {4, 4.2, 3}),
+                                         box_solid({8, 1, 0}, {9, 2, 3})};
+  VisibilityConfig c = testing::test_config(PvsMethod::Conservative, true);
+  c.solids = solid_volumes(solids);
+  c.seeds = {{2, 2, 1.5}};
+  const VisibilityResult r = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
+  EXPECT_TRUE(r.leaks.empty());
+  std::vector<std::uint32_t> void_polygons;
+  for (const auto item : r.void_facing)
+    void_polygons.insert(void_polygons.end(), r.item_polygons[item].begin(), r.item_polygons[item].end());
+  std::sort(void_polygons.begin(), void_polygons.end());
+  std::vector<std::uint32_t> outer;
+  for (std::uint32_t p = first_outer; p < end; ++p) outer.push_back(p);
+  // The shell's outside and the pillar (faces on the model's box face out of it), not the room's faces.
+  EXPECT_EQ(void_polygons, outer);
+  // The judge takes a point in the void for open space unless it knows the faces there face the void.
+  const VisibilityJudge plain(m.b.vertices, m.b.indices, m.b.polygons, testing::small_judge(true));
+  const VisibilityJudge sealed(m.b.vertices, m.b.indices, m.b.polygons, testing::small_judge(true),
+                               void_polygons);
+  EXPECT_TRUE(plain.in_free_space({4.6, 2, 1.5}));
+  EXPECT_FALSE(sealed.in_free_space({4.6, 2, 1.5}));
+  EXPECT_TRUE(sealed.in_free_space({2, 2, 1.5}));
 }
 
 TEST(OpenRegions, ADetailClusterSetInTheCeilingIsSeenFromTheRoomBelow) {

@@ -65,7 +65,7 @@ TEST_P(VisibilityShared, ConservativePvsMissesNoPixel) {
     o.resolution = 32;
     o.dense = 1;
     o.dense_resolution = 16;
-    const VisibilityJudge judge(b.vertices, b.indices, b.polygons, o);
+    const VisibilityJudge judge(b.vertices, b.indices, b.polygons, o, b.void_facing);
     // Viewpoints beside every portal too: the widest views out of a cell, the hardest for its PVS.
     const BundleCells cells = bundle_cells(judge.polygons(), b.cells, o.cull_back_faces);
     std::size_t portal_eyes = 0;
