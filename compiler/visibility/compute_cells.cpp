@@ -144,10 +144,9 @@ std::string VisibilityResult::summary() const {
       seconds_partition, seconds_portals, seconds_pvs, seconds_proofs);
 }
 
-std::vector<std::uint32_t> VisibilityResult::polygon_pvs(std::size_t cell) const {
+std::vector<std::uint32_t> VisibilityResult::polygons_of(std::span<const std::uint32_t> items) const {
   std::vector<std::uint32_t> out;
-  for (const auto item : pvs[cell])
-    out.insert(out.end(), item_polygons[item].begin(), item_polygons[item].end());
+  for (const auto item : items) out.insert(out.end(), item_polygons[item].begin(), item_polygons[item].end());
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -382,11 +381,7 @@ CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfi
     spdlog::warn("visibility: leak to the outside, {:.4f} m2 at world {}{}", leak.area,
                  world(leak.points.back()), r.seeded ? "; path from inside: " + path : std::string());
   }
-  out.void_facing.clear();
-  for (const auto item : r.void_facing)
-    out.void_facing.insert(out.void_facing.end(), r.item_polygons[item].begin(), r.item_polygons[item].end());
-  std::sort(out.void_facing.begin(), out.void_facing.end());
-  out.void_facing.erase(std::unique(out.void_facing.begin(), out.void_facing.end()), out.void_facing.end());
+  out.void_facing = r.polygons_of(r.void_facing);
   out.leak_path.clear();
   if (r.seeded && !r.leaks.empty())
     for (const auto& p : r.leaks.front().points)

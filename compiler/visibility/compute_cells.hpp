@@ -2,6 +2,7 @@
 // The cells stage: partition, portals and PVS for a bundle's drawn polygons, written into the bundle as
 // CELL (bounds + PVS range), NODE (the splitting-plane tree, O(depth) lookup) and PVSL (polygon ids).
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -45,8 +46,12 @@ struct VisibilityResult {
   int proof_pairs_capped = 0;  // pairs an item got when that passed proof_pair_budget; 0: not capped
   double seconds_partition = 0.0, seconds_portals = 0.0, seconds_pvs = 0.0, seconds_proofs = 0.0;
   [[nodiscard]] std::string summary() const;  // one line for the stage record and logs
+  // The bundle polygons of `items`, sorted (each polygon is in one item).
+  [[nodiscard]] std::vector<std::uint32_t> polygons_of(std::span<const std::uint32_t> items) const;
   // The bundle polygons of a cell's PVS, sorted.
-  [[nodiscard]] std::vector<std::uint32_t> polygon_pvs(std::size_t cell) const;
+  [[nodiscard]] std::vector<std::uint32_t> polygon_pvs(std::size_t cell) const {
+    return polygons_of(pvs[cell]);
+  }
 };
 
 // Everything from the drawn polygons (local coordinates, as in the bundle). `group_names` (by group index)

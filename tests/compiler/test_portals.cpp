@@ -25,13 +25,7 @@ PortalGraph graph_of(const MiniBuilding& m, Partition* out = nullptr) {
 // Two rooms along x divided by a wall of thickness `t` at x = 4 .. 4+t, with a 1x2 m door.
 MiniBuilding door_in_wall(double t) {
   MiniBuilding m;
-  const double x1 = 8.0 + t;
-  m.rect(2, 0.0, 0, x1, 0, 4);
-  m.rect(2, 3.0, 0, x1, 0, 4);
-  m.rect(0, 0.0, 0, 4, 0, 3);
-  m.rect(0, x1, 0, 4, 0, 3);
-  m.rect(1, 0.0, 0, 3, 0, x1);
-  m.rect(1, 4.0, 0, 3, 0, x1);
+  m.row_shell(8.0 + t);
   m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);
   if (t > 0.0) {
     m.rect_with_hole(0, 4.0 + t, 0, 4, 0, 3, 1.5, 2.5, 0.0, 2.0);
@@ -69,12 +63,7 @@ TEST(Portals, OpeningsTouchingAtACornerAreTwoPortals) {
   // single point (2, 1). As one portal they would join whatever lies behind each (with solids, a room and
   // the void beyond a cornice) though no sight line passes from one to the other.
   MiniBuilding m;
-  m.rect(2, 0.0, 0, 8, 0, 4);
-  m.rect(2, 3.0, 0, 8, 0, 4);
-  m.rect(0, 0.0, 0, 4, 0, 3);
-  m.rect(0, 8.0, 0, 4, 0, 3);
-  m.rect(1, 0.0, 0, 3, 0, 8);
-  m.rect(1, 4.0, 0, 3, 0, 8);
+  m.row_shell(8.0);
   m.rect(0, 4.0, 0, 2, 1, 3);
   m.quad({4, 2, 1}, {4, 4, 0}, {4, 4, 1}, {4, 4, 1});  // the cornice's triangle
   m.rect(0, 4.0, 2, 4, 2, 3);
@@ -102,12 +91,7 @@ TEST(Portals, SealedWallHasNoPortal) {
 TEST(Portals, GlassIsSeeThroughButSealsLeaks) {
   // The shared wall has a 2x1 window of glass.
   MiniBuilding w;
-  w.rect(2, 0.0, 0, 8, 0, 4);
-  w.rect(2, 3.0, 0, 8, 0, 4);
-  w.rect(0, 0.0, 0, 4, 0, 3);
-  w.rect(0, 8.0, 0, 4, 0, 3);
-  w.rect(1, 0.0, 0, 3, 0, 8);
-  w.rect(1, 4.0, 0, 3, 0, 8);
+  w.row_shell(8.0);
   w.rect_with_hole(0, 4.0, 0, 4, 0, 3, 1.0, 3.0, 1.0, 2.0);
   w.rect(0, 4.0, 1.0, 3.0, 1.0, 2.0, model::Role::Glass);
   const PortalGraph g = graph_of(w);

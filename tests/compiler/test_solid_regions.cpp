@@ -208,10 +208,7 @@ TEST(OpenRegions, TheFacesOfASealedShellTowardsTheVoidAreVoidFacing) {
   c.seeds = {{2, 2, 1.5}};
   const VisibilityResult r = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, c);
   EXPECT_TRUE(r.leaks.empty());
-  std::vector<std::uint32_t> void_polygons;
-  for (const auto item : r.void_facing)
-    void_polygons.insert(void_polygons.end(), r.item_polygons[item].begin(), r.item_polygons[item].end());
-  std::sort(void_polygons.begin(), void_polygons.end());
+  const std::vector<std::uint32_t> void_polygons = r.polygons_of(r.void_facing);
   std::vector<std::uint32_t> outer;
   for (std::uint32_t p = first_outer; p < end; ++p) outer.push_back(p);
   // The shell's outside and the pillar (faces on the model's box face out of it), not the room's faces.
