@@ -34,7 +34,17 @@ struct Shot {
   std::uint32_t rays = 0;
   std::uint64_t first_ray = 0;        // index of its first ray in the round
   std::vector<double> power_per_ray;  // K = circuits * 3
+  // The k with power: a patch holds the light of the few circuits that reach its room, so a hit touches
+  // those alone instead of every circuit's three channels.
+  std::vector<std::uint32_t> lit;
 };
+
+// Fills `s.lit` with the channels of `s.power_per_ray` that carry power.
+void index_lit_channels(Shot& s) {
+  s.lit.clear();
+  for (std::uint32_t k = 0; k < s.power_per_ray.size(); ++k)
+    if (s.power_per_ray[k] != 0.0) s.lit.push_back(k);
+}
 
 double scalar_power(const double* v, std::size_t k) {
   double s = 0.0;
@@ -125,7 +135,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
 
   std::vector<Shot> shots;
   std::vector<std::int32_t> hits;
+  // Each patch's unshot power as a scalar (scalar_power of its row), kept as light arrives and leaves so a
+  // round does not rescan every patch's circuits.
   std::vector<double> patch_scalar(P);
+  for (std::size_t i = 0; i < P; ++i) patch_scalar[i] = scalar_power(&unshot[i * K], K);
   const unsigned threads = std::max(1u, options.threads);
 
   auto cast_round = [&](std::uint64_t round) {
@@ -181,24 +194,27 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   };
 
   auto deposit = [&](const Shot& s) {
+    const double ray_power = scalar_power(s.power_per_ray.data(), K);
     for (std::uint32_t r = 0; r < s.rays; ++r) {
       const std::int32_t h = hits[s.first_ray + r];
       if (h < 0) {
-        const double lost = scalar_power(s.power_per_ray.data(), K);
-        (h == kEscaped ? stats.escaped : stats.back_face) += lost;
+        (h == kEscaped ? stats.escaped : stats.back_face) += ray_power;
         continue;
       }
       const Patch& p = set.patches[static_cast<std::size_t>(h)];
       ++patch_hits[static_cast<std::size_t>(h)];
       double* b = &result.radiosity[std::size_t(h) * K];
       double* u = &unshot[std::size_t(h) * K];
-      for (std::size_t k = 0; k < K; ++k) {
+      double gained = 0.0;
+      for (const std::uint32_t k : s.lit) {
         const double in = s.power_per_ray[k];
         const double reflected = in * p.reflectance[k % 3];
         b[k] += reflected / p.area;
         u[k] += reflected;
+        gained += reflected;
         stats.absorbed += (in - reflected) / 3.0;
       }
+      patch_scalar[std::size_t(h)] += gained / 3.0;
     }
   };
 
@@ -215,6 +231,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
              {}};
       s.power_per_ray.assign(K, 0.0);
       for (int c = 0; c < 3; ++c) s.power_per_ray[e.circuit * 3 + c] = e.power[c] / s.rays;
+      index_lit_channels(s);
       shots.push_back(std::move(s));
     }
     cast_round(0);
@@ -229,7 +246,6 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   for (std::uint64_t round = 1;; ++round) {
     double total_unshot = 0.0, largest = 0.0;
     for (std::size_t i = 0; i < P; ++i) {
-      patch_scalar[i] = scalar_power(&unshot[i * K], K);
       total_unshot += patch_scalar[i];
       largest = std::max(largest, patch_scalar[i]);
     }
@@ -255,6 +271,8 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
         s.power_per_ray[k] = unshot[i * K + k] / s.rays;
         unshot[i * K + k] = 0.0;
       }
+      patch_scalar[i] = 0.0;
+      index_lit_channels(s);
       shots.push_back(std::move(s));
     }
     stats.shots += shots.size();
