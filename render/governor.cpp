@@ -65,10 +65,12 @@ double FrameGovernor::predict(MovingLevel level, double triangles) const {
   return std::max(0.0, mean_m + std::max(0.0, slope) * (triangles - mean_t));
 }
 
-MovingLevel FrameGovernor::choose_moving(std::uint32_t cell, std::span<const double> triangles) {
+MovingLevel FrameGovernor::choose_moving(std::uint32_t cell, std::span<const double> triangles,
+                                         double spent_ms) {
   const std::uint32_t judged = !moving_.contains(cell) && last_cell_ ? *last_cell_ : cell;
   last_cell_ = cell;
-  const MovingLevel level = settled(judged, triangles);
+  const double spent = spent_ms > 0.0 && std::isfinite(spent_ms) ? spent_ms : 0.0;
+  const MovingLevel level = settled(judged, triangles, budget_ms_ - spent);
   int& count = choices_[cell];
   if (int(level) + 1 < kMovingLevels && ++count >= kProbeInterval) {
     count = 0;
@@ -77,7 +79,8 @@ MovingLevel FrameGovernor::choose_moving(std::uint32_t cell, std::span<const dou
   return level;
 }
 
-MovingLevel FrameGovernor::settled(std::uint32_t cell, std::span<const double> triangles) const {
+MovingLevel FrameGovernor::settled(std::uint32_t cell, std::span<const double> triangles,
+                                   double budget_ms) const {
   const auto judged = [&](int l) {
     const double p =
         std::size_t(l) < triangles.size() ? predict(MovingLevel(l), triangles[std::size_t(l)]) : -1.0;
@@ -88,8 +91,8 @@ MovingLevel FrameGovernor::settled(std::uint32_t cell, std::span<const double> t
     const double e = judged(l);
     const double below = judged(l - 1);
     if (e < 0.0) {
-      if (below < 0.0 || below <= 0.75 * budget_ms_) return MovingLevel(l);
-    } else if (e <= kHeadroom * budget_ms_) {
+      if (below < 0.0 || below <= 0.75 * budget_ms) return MovingLevel(l);
+    } else if (e <= kHeadroom * budget_ms) {
       return MovingLevel(l);
     }
   }

@@ -46,7 +46,12 @@ class FrameGovernor {
   // judged by its cost model instead: a line of ms against triangles fitted over every cell's frames at that
   // level (Funkhouser & Sequin's predictive governor), once it has kModelMinFrames frames. A view that turns
   // towards a furnished room is then judged by what it will draw, not by the cell's past frames.
-  [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell, std::span<const double> triangles = {});
+  //
+  // `spent_ms`: what this frame has already cost before drawing (the portal walk and the level's draw
+  // lists, measured by the caller): the levels are judged against the budget less it. The timed frames
+  // the estimates learn from start after it, so it is counted once.
+  [[nodiscard]] MovingLevel choose_moving(std::uint32_t cell, std::span<const double> triangles = {},
+                                          double spent_ms = 0.0);
   static constexpr int kProbeInterval = 120;
   static constexpr double kModelMinFrames = 8.0;
   // The model's prediction in ms, or a negative number while it has too few frames. The governor judges by
@@ -73,7 +78,8 @@ class FrameGovernor {
   std::array<LineFit, kMovingLevels> models_{};
   std::unordered_map<std::uint32_t, int> choices_;  // per cell, since its last probe
   std::optional<std::uint32_t> last_cell_;          // of the last choice
-  [[nodiscard]] MovingLevel settled(std::uint32_t cell, std::span<const double> triangles) const;
+  [[nodiscard]] MovingLevel settled(std::uint32_t cell, std::span<const double> triangles,
+                                    double budget_ms) const;
 };
 
 }  // namespace walk::render

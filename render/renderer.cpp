@@ -921,12 +921,16 @@ bool Renderer::refine(const View& view, int width, int height) {
                      width != r.shown_width || height != r.shown_height;
   const bool relit = r.shown_levels != r.levels;
   if (moved) {
-    // A pinned level needs no prediction: the governor is asked only to keep its per-cell state.
+    // A pinned level needs no prediction: the governor is asked only to keep its per-cell state. The
+    // levels' lists (and the portal walk, once a view) are this frame's too: up to 4 ms on E1M1, which a
+    // budget judged without them would overrun.
+    const auto prepare_start = std::chrono::steady_clock::now();
     std::array<double, kMovingLevels> triangles{};
     if (!r.pinned_level) triangles = r.level_triangles(view, width, height);
     const std::uint32_t cell = r.cell_of(view);
     r.moving_level = r.pinned_level.value_or(r.governor.choose_moving(
-        cell, r.pinned_level ? std::span<const double>() : std::span<const double>(triangles)));
+        cell, r.pinned_level ? std::span<const double>() : std::span<const double>(triangles),
+        milliseconds_since(prepare_start)));
     r.schedule.view_changed(r.moving_level == MovingLevel::Patches ? 1.0f : 0.0f);
   } else if (relit) {
     r.schedule.light_changed();

@@ -177,6 +177,23 @@ TEST(FrameGovernor, AModelThatMissesWidelyIsJudgedByItsSpreadToo) {
   EXPECT_NE(noisy.choose_moving(2, view), MovingLevel::Patches) << "13 + 2 x 4 ms does not";
 }
 
+TEST(FrameGovernor, WhatTheFrameSpentBeforeDrawingComesOffTheBudget) {
+  FrameGovernor governor(60.0);
+  for (int i = 0; i < 20; ++i) {
+    const double t = 10000.0 + 100.0 * (i % 3);
+    governor.record_moving(1, MovingLevel::Patches, 12.0, t);
+    governor.record_moving(1, MovingLevel::Coarse, 6.0, t / 4.0);
+  }
+  const std::array<double, kMovingLevels> view{500.0, 1000.0, 2500.0, 10100.0};
+  EXPECT_EQ(governor.choose_moving(2, view), MovingLevel::Patches) << "12 ms fits 90 % of 16.7 ms";
+  EXPECT_EQ(governor.choose_moving(2, view, 2.0), MovingLevel::Patches) << "and of 14.7";
+  EXPECT_EQ(governor.choose_moving(2, view, 4.0), MovingLevel::Coarse) << "not of 12.7: a 4 ms portal walk";
+  EXPECT_LT(int(governor.choose_moving(2, view, 50.0)), int(MovingLevel::Coarse))
+      << "nothing measured fits: a cheaper level, never tried, or the floor";
+  EXPECT_EQ(governor.choose_moving(2, view, std::nan("")), MovingLevel::Patches)
+      << "no time known: none spent";
+}
+
 TEST(FrameGovernor, SamplesPerFrameFollowTheSampleCost) {
   FrameGovernor governor(60.0);
   EXPECT_EQ(governor.samples_per_frame(), 1);
