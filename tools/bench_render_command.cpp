@@ -54,9 +54,20 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, std::size_t(p * double(v.size() - 1) + 0.5))];
 }
 
+// Whether the kiosk's viewer can stand at `eye`: in a cell on the walk (anywhere when the bundle has no
+// cells).
+bool is_on_walk(const model::Bundle& bundle, const glm::dvec3& eye) {
+  if (bundle.cells().empty()) return true;
+  const double at[3] = {eye.x, eye.y, eye.z};
+  const std::uint32_t cell = bundle.locate_cell(at);
+  return cell < bundle.cells().size() && !(bundle.cells()[cell].flags & model::kCellOutside);
+}
+
 // The scripted walk: eye 1.2 m under each luminaire (inside a room by construction), visited nearest first,
 // straight segments between them, looking where it goes, turning a little as it walks. Segments between
-// rooms that are not neighbours pass through walls: fine for timing, not a navigation test.
+// rooms that are not neighbours pass through walls, where the kiosk's viewer never stands (navigation
+// collides with them): points off the walk (in no cell, or in one only the outside reaches, where every
+// polygon is drawn) are left out, and the frames spread over the rest. Not a navigation test.
 std::vector<render::View> scripted_walk(const model::Bundle& bundle, int frames) {
   std::vector<glm::dvec3> stops;
   for (const auto& l : bundle.luminaires())
@@ -83,14 +94,31 @@ std::vector<render::View> scripted_walk(const model::Bundle& bundle, int frames)
   std::vector<double> along{0.0};
   for (std::size_t i = 1; i < path.size(); ++i)
     along.push_back(along.back() + glm::length(path[i] - path[i - 1]));
-  std::vector<render::View> views;
-  for (int f = 0; f < frames; ++f) {
-    const double s = along.back() * f / std::max(1, frames - 1);
+  // The segment (its end's index) and point at distance `s` along the path.
+  auto point_at = [&](double s) {
     std::size_t i = 1;
     while (i + 1 < path.size() && along[i] < s) ++i;
     const double t = along[i] > along[i - 1] ? (s - along[i - 1]) / (along[i] - along[i - 1]) : 0.0;
+    return std::pair{i, path[i - 1] + (path[i] - path[i - 1]) * std::clamp(t, 0.0, 1.0)};
+  };
+  // Points on the walk, kOversample times as many as frames, then `frames` of them evenly.
+  constexpr int kOversample = 8;
+  const int samples = frames * kOversample;
+  std::vector<double> on_walk, every;
+  for (int j = 0; j < samples; ++j) {
+    every.push_back(along.back() * j / std::max(1, samples - 1));
+    if (is_on_walk(bundle, point_at(every.back()).second)) on_walk.push_back(every.back());
+  }
+  if (on_walk.size() < 2) on_walk = every;  // none on this path: every point
+  if (on_walk.size() < every.size())
+    std::cerr << "scripted walk: " << every.size() - on_walk.size() << " of " << every.size()
+              << " points along its path are off the walk (in walls or the void) and left out\n";
+  std::vector<render::View> views;
+  for (int f = 0; f < frames; ++f) {
+    const auto [i, eye] = point_at(
+        on_walk[std::size_t(std::llround(double(on_walk.size() - 1) * f / std::max(1, frames - 1)))]);
     render::View v;
-    v.eye = path[i - 1] + (path[i] - path[i - 1]) * std::clamp(t, 0.0, 1.0);
+    v.eye = eye;
     glm::dvec3 d = path[i] - path[i - 1];
     d.z = 0.0;
     if (glm::length(d) < 1e-9) d = {1, 0, 0};
