@@ -101,6 +101,29 @@ namespace {
 
 // `walk bench render` end to end on the four-cell test bundle, small and short: every section prints its
 // rows (a smoke test: the figures themselves come from the full run in docs/RENDER.md).
+TEST(WalkTool, BenchRenderWalksOnlyWhereAViewerCanStand) {
+  test::TwoRooms scene;
+  scene.four_cells = true;
+  auto contents = test::make_two_rooms(scene);
+  // Room B's two cells only the outside reaches: the scripted walk (x = 2 -> 6 m, no luminaires) leaves
+  // out its half of the path there and spreads its frames over room A.
+  contents.cells[2].flags = model::kCellOutside;
+  contents.cells[3].flags = model::kCellOutside;
+  const auto bundle = test::open_bundle(contents, "bench_render_off_walk");
+  std::string output;
+  ASSERT_EQ(
+      run(kWalk + " bench render " + bundle->path() + " --backend osmesa --size 160x120 --frames 12", output),
+      0)
+      << output;
+  const auto at = output.find("scripted walk: ");
+  ASSERT_NE(at, std::string::npos) << output;
+  const int left_out = std::stoi(output.substr(at + 15));
+  EXPECT_GE(left_out, 40) << "about half of 96 path points lie in room B";
+  EXPECT_LE(left_out, 56);
+  EXPECT_NE(output.find("of 96 points along its path are off the walk"), std::string::npos) << output;
+  EXPECT_NE(output.find("governed,moving,12,"), std::string::npos) << "still 12 frames, all in room A";
+}
+
 TEST(WalkTool, BenchRenderPrintsEverySection) {
   test::TwoRooms scene;
   scene.four_cells = true;
