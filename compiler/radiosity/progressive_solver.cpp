@@ -224,11 +224,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     for (std::uint32_t i = 0; i < points.size(); ++i) {
       const auto& e = points[i];
       const double power = (e.power.r + e.power.g + e.power.b) / 3.0;
-      Shot s{i,
-             true,
-             static_cast<std::uint32_t>(std::max(1.0, std::round(power * options.rays_per_watt))),
-             0,
-             {}};
+      Shot s;
+      s.patch = i;
+      s.point = true;
+      s.rays = static_cast<std::uint32_t>(std::max(1.0, std::round(power * options.rays_per_watt)));
       s.power_per_ray.assign(K, 0.0);
       for (int c = 0; c < 3; ++c) s.power_per_ray[e.circuit * 3 + c] = e.power[c] / s.rays;
       index_lit_channels(s);
@@ -260,12 +259,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     for (std::uint32_t i = 0; i < P; ++i) {
       if (patch_scalar[i] < threshold || patch_scalar[i] <= 0.0) continue;
       // Power per ray stays constant: rays proportional to the unshot power, at least one.
-      Shot s{i,
-             false,
-             static_cast<std::uint32_t>(
-                 std::clamp(std::round(patch_scalar[i] * options.rays_per_watt), 1.0, 4.0e9)),
-             0,
-             {}};
+      Shot s;
+      s.patch = i;
+      s.rays = static_cast<std::uint32_t>(
+          std::clamp(std::round(patch_scalar[i] * options.rays_per_watt), 1.0, 4.0e9));
       s.power_per_ray.resize(K);
       for (std::size_t k = 0; k < K; ++k) {
         s.power_per_ray[k] = unshot[i * K + k] / s.rays;
