@@ -24,6 +24,12 @@ constexpr double kRayOffset = 1e-6;
 // Hits within this distance of each other (metres) count as a tie resolved in favour of the face looking back
 // at the ray: back-to-back walls drawn once per room are exactly coincident.
 constexpr double kTieDistance = 1e-6;
+// A patch within this fraction below a round's threshold shoots with it. Every ray carries the same power,
+// so patches hit by k and 2k rays tie exactly at batch_fraction 0.5, and float rounding would split such
+// ties one way or the other: a scene differing only in rounding (a texture's mean reflectance for the
+// material's own) would shoot different patches and differ by the solve's noise, not by the rounding.
+// Well above double rounding (1e-16) and a float albedo's (1e-7), well below any real difference.
+constexpr double kBatchTie = 1e-6;
 constexpr std::int32_t kEscaped = -1;
 constexpr std::int32_t kBackFace = -2;
 constexpr std::uint32_t kChunkRays = 4096;
@@ -255,7 +261,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
                                         100.0 * total_unshot / stats.emitted, 100.0 * options.residual));
     if (total_unshot <= stop || largest <= 0.0 || stats.rays >= options.max_rays) break;
     shots.clear();
-    const double threshold = largest * options.batch_fraction;
+    const double threshold = largest * options.batch_fraction * (1.0 - kBatchTie);
     for (std::uint32_t i = 0; i < P; ++i) {
       if (patch_scalar[i] < threshold || patch_scalar[i] <= 0.0) continue;
       // Power per ray stays constant: rays proportional to the unshot power, at least one.
