@@ -1,7 +1,6 @@
 #include "compiler/visibility/inside_flood.hpp"
 
 #include <algorithm>
-#include <deque>
 
 #include "compiler/partition/axial_cover.hpp"
 
@@ -28,6 +27,23 @@ bool walkable(const Portal& p) {
 
 }  // namespace
 
+void flood_portals(const PortalGraph& g, std::vector<char>& reached, std::vector<std::uint32_t> queue,
+                   const std::function<bool(const Portal&)>& passes,
+                   const std::function<void(std::uint32_t, std::uint32_t, std::uint32_t)>& entered) {
+  for (std::size_t h = 0; h < queue.size(); ++h) {
+    const std::uint32_t c = queue[h];
+    for (const auto id : g.cell_portals[c]) {
+      const Portal& p = g.portals[id];
+      if (!passes(p)) continue;
+      const std::uint32_t d = p.back == c ? p.front : p.back;
+      if (reached[d]) continue;
+      reached[d] = 1;
+      if (entered) entered(d, id, c);
+      queue.push_back(d);
+    }
+  }
+}
+
 InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<const model::Vec3> seeds,
                          const std::function<std::uint32_t(const model::Vec3&)>& locate_seed,
                          bool over_regions) {
@@ -42,7 +58,7 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
   // Breadth first, so each leak's path is a shortest one in portals.
   std::vector<std::uint32_t> via(n, kOutside);  // portal the flood came in through
   std::vector<std::uint32_t> seed_of(n, 0);
-  std::deque<std::uint32_t> queue;
+  std::vector<std::uint32_t> queue;
   for (std::size_t s = 0; s < seeds.size(); ++s) {
     const std::uint32_t c = locate_seed ? locate_seed(seeds[s]) : locate(part.nodes, seeds[s]);
     if (c >= n || f.inside[c]) continue;
@@ -50,20 +66,15 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
     seed_of[c] = static_cast<std::uint32_t>(s);
     queue.push_back(c);
   }
-  while (!queue.empty()) {
-    const std::uint32_t c = queue.front();
-    queue.pop_front();
-    for (const auto id : g.cell_portals[c]) {
-      const Portal& p = g.portals[id];
-      if (p.glazed || !walkable(p) || (over_regions && !(p.forward && p.backward))) continue;
-      const std::uint32_t d = p.back == c ? p.front : p.back;
-      if (f.inside[d]) continue;
-      f.inside[d] = 1;
-      via[d] = id;
-      seed_of[d] = seed_of[c];
-      queue.push_back(d);
-    }
-  }
+  flood_portals(
+      g, f.inside, std::move(queue),
+      [&](const Portal& p) {
+        return !p.glazed && walkable(p) && (!over_regions || (p.forward && p.backward));
+      },
+      [&](std::uint32_t d, std::uint32_t portal, std::uint32_t from) {
+        via[d] = portal;
+        seed_of[d] = seed_of[from];
+      });
   for (const Leak& leak : g.leaks) {
     if (!f.inside[leak.cell]) continue;
     LeakPath path;

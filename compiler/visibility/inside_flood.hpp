@@ -29,6 +29,15 @@ struct InsideFlood {
   std::size_t seeds = 0;
 };
 
+// Breadth first from the cells in `queue` (already marked in `reached`, per cell) through the portals
+// `passes` lets through, marking each cell it reaches and telling `entered` (when set) the cell, the portal
+// and the cell it came from. The inside flood and the outside one (void_facing_items) differ only in
+// where they start and which portals they pass.
+void flood_portals(
+    const PortalGraph& graph, std::vector<char>& reached, std::vector<std::uint32_t> queue,
+    const std::function<bool(const Portal&)>& passes,
+    const std::function<void(std::uint32_t cell, std::uint32_t portal, std::uint32_t from)>& entered = {});
+
 // `locate_seed` gives a seed's cell (kOutside: none, a seed inside a solid); by default the partition's
 // node tree. `over_regions` (cells are open regions, open_regions.hpp, where no cell holds a wall's core):
 // the flood passes no one-way portal (a face a wall covers on one side), and afterwards the regions sight

@@ -9,6 +9,7 @@
 
 #include "common/parallel_for.hpp"
 #include "compiler/partition/axial_cover.hpp"
+#include "compiler/visibility/inside_flood.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -504,23 +505,15 @@ std::vector<std::uint32_t> void_facing_items(const OpenRegions& regions, const P
   const PortalGraph& g = regions.graph;
   const std::size_t n = regions.cell_of.size();
   std::vector<char> outside(n, 0);
-  std::vector<std::uint32_t> queue;
+  std::vector<std::uint32_t> openings;
   for (const Leak& leak : g.leaks)
     if (leak.cell < n && !outside[leak.cell]) {
       outside[leak.cell] = 1;
-      queue.push_back(leak.cell);
-    }
-  for (std::size_t h = 0; h < queue.size(); ++h)
-    for (const auto id : g.cell_portals[queue[h]]) {
-      const Portal& p = g.portals[id];
-      const std::uint32_t d = p.back == queue[h] ? p.front : p.back;
-      if (!outside[d]) {
-        outside[d] = 1;
-        queue.push_back(d);
-      }
+      openings.push_back(leak.cell);
     }
   std::vector<std::uint32_t> out;
-  if (queue.empty()) return out;
+  if (openings.empty()) return out;
+  flood_portals(g, outside, std::move(openings), [](const Portal&) { return true; });
   for (std::uint32_t item = 0; item < polygons.size(); ++item) {
     const VisPolygon& p = polygons[item];
     if (p.detail || !p.opaque) continue;
