@@ -96,7 +96,17 @@ MovingLevel FrameGovernor::settled(std::uint32_t cell, std::span<const double> t
       return MovingLevel(l);
     }
   }
-  return MovingLevel::Reduced;
+  // Nothing fits. Half resolution is the floor only where it is the cheapest: where the frame is not
+  // fill-bound (a large model's vertex and draw-call work) it costs what the simplified level costs, and
+  // then the better picture is the one to draw. Among known levels the cheapest wins, the higher on a tie.
+  const double floor_cost = judged(0);
+  if (floor_cost < 0.0) return MovingLevel::Reduced;
+  int best = 0;
+  for (int l = 1; l < kMovingLevels; ++l) {
+    const double e = judged(l);
+    if (e >= 0.0 && e <= judged(best)) best = l;
+  }
+  return MovingLevel(best);
 }
 
 int FrameGovernor::samples_per_frame() const {

@@ -36,7 +36,8 @@ class FrameGovernor {
   // One accumulation sample took `ms`.
   void record_sample(double ms);
   // The best level whose estimate in this cell fits the budget with 10 % headroom. An untried level is tried
-  // unless the level below it is known to leave less than a quarter of the budget; Reduced is the floor.
+  // unless the level below it is known to leave less than a quarter of the budget. When none fits, the
+  // cheapest known level (the higher on a tie): Reduced, the floor, only where it is cheaper.
   // Every `kProbeInterval`-th choice in a cell below the top level tries the next level up once, so an
   // estimate spoilt by one slow frame (a busy CPU) does not hold the cell down for good. A cell with no
   // measurement yet starts at the level of the cell chosen for last (the one just left, of similar cost),
