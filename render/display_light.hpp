@@ -3,8 +3,11 @@
 // (CIRC light_form): the paper's compact form (the vertex's 8-bit colour times an 8-bit logarithmic
 // intensity code's value times the circuit's scale, model/compact_code.hpp) where it is within the
 // compiler's limit, else LGHT's floats.
-// A compact circuit costs a vertex 1 byte instead of 12. This class lays out what the vertex shader reads
-// and mixes on the CPU exactly as it does (diagonals, subdivision).
+// Each vertex keeps only the circuits that reach it (non-zero light or code): in a building most
+// vertices see one or two of its circuits (the generated S building: 1.7 of 34 on average), so the vertex
+// shader loops over those and not over every circuit, and the circuit count is bounded by the levels
+// uniform alone. Leaving out zeros changes no sum, so the mix is the dense one exactly. This class lays out
+// what the vertex shader reads and mixes on the CPU exactly as it does (diagonals, subdivision).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -21,6 +24,24 @@ enum class DisplayLightForm {
   Full,        // every circuit from LGHT: the compile's answer without the compact form's error
 };
 
+// A vertex's first entry in each of the two lists below (the vertex attribute a_light_first); a vertex's
+// entries follow one another and its last one is marked, so 8 bytes a vertex say where its light is.
+struct VertexLightRange {
+  static constexpr std::uint32_t kNone = 0xffffffffu;  // no circuit reaches the vertex in that form
+  std::uint32_t full_first = kNone, compact_first = kNone;
+};
+// One circuit shown full at one vertex: its radiosity and the circuit's index, plus kLastFullEntry on a
+// vertex's last entry (a float, exact below 2^24, so one RGBA32F texel holds the entry).
+struct FullLightEntry {
+  float rgb[3];
+  float circuit;
+};
+inline constexpr float kLastFullEntry = 1048576.0f;  // 2^20, above any circuit index
+// One circuit shown compact at one vertex: circuit << 8 | code (code > 0), plus kLastCompactEntry on a
+// vertex's last entry.
+using CompactLightEntry = std::uint32_t;
+inline constexpr std::uint32_t kLastCompactEntry = 0x80000000u;
+
 class DisplayLight {
  public:
   DisplayLight(const model::Bundle& bundle, DisplayLightForm form);
@@ -29,16 +50,14 @@ class DisplayLight {
   [[nodiscard]] const std::vector<std::uint32_t>& full_circuits() const { return full_; }
   [[nodiscard]] const std::vector<std::uint32_t>& compact_circuits() const { return compact_; }
 
-  // [vertex][full circuit][3] floats for the GPU: LGHT itself when every circuit is full (no copy), else a
-  // packed copy of the full circuits (`packed` holds it).
-  [[nodiscard]] std::span<const float> full_light(std::vector<float>& packed) const;
-  // [vertex][compact circuit] codes for the GPU (empty when no circuit is compact); LCOL is uploaded as is.
-  [[nodiscard]] std::vector<std::uint8_t> compact_codes() const;
+  // Per vertex, where its entries start; the entries in vertex order, each vertex's in circuit order.
+  [[nodiscard]] const std::vector<VertexLightRange>& ranges() const { return ranges_; }
+  [[nodiscard]] const std::vector<FullLightEntry>& full_entries() const { return full_entries_; }
+  [[nodiscard]] const std::vector<CompactLightEntry>& compact_entries() const { return compact_entries_; }
 
-  // The levels the shader takes, from levels in circuit order: the full circuits' as they are, the compact
-  // circuits' multiplied by their scale (so the shader's sum is level x scale x the code's value).
-  void split_levels(std::span<const float> levels, std::vector<float>& full,
-                    std::vector<float>& compact) const;
+  // The levels the shader takes, indexed by circuit: a full circuit's as it is, a compact circuit's
+  // multiplied by its scale (so the shader's sum is level x scale x the code's value).
+  void shader_levels(std::span<const float> levels, std::vector<float>& out) const;
 
   // The mixed radiosity at `vertex` for `levels` (circuit order), as the vertex shader computes it.
   [[nodiscard]] glm::vec3 mixed(std::size_t vertex, std::span<const float> levels) const;
@@ -50,6 +69,9 @@ class DisplayLight {
  private:
   const model::Bundle& bundle_;
   std::vector<std::uint32_t> full_, compact_;
+  std::vector<VertexLightRange> ranges_;
+  std::vector<FullLightEntry> full_entries_;
+  std::vector<CompactLightEntry> compact_entries_;
 };
 
 }  // namespace walk::render

@@ -5,51 +5,63 @@
 namespace walk::render {
 
 static_assert(model::kCompactStops == 16.0, "the vertex shader decodes LINT with 16 stops written out");
+static_assert(kMaxCircuits == 512, "u_levels is vec4[128] and kMaxEntries 512 in the shader below");
 
 // R32F with three fetches: RGB32F texture buffers need GL 4.0, and padding to RGBA32F would cost a third
 // more memory than the bundle's own LGHT layout, which is uploaded as is.
+// Each vertex loops over its own entries only (render/display_light.hpp), one texel each: the full entry's
+// RGBA32F holds radiosity and circuit together.
 const char* const kLightMixerVertexShader = R"glsl(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_albedo;
 layout(location = 2) in uint a_polygon;
+layout(location = 3) in uvec2 a_light_first;  // first full entry, first compact entry (kNone: none)
 uniform mat4 u_view_projection;
-uniform samplerBuffer u_light;          // per vertex: the radiosity patches of the circuits shown full
+uniform samplerBuffer u_light;          // full entries: radiosity (rgb) and circuit (a)
 uniform samplerBuffer u_polygon_light;  // per polygon, already mixed (RGB): the coarse display while moving
 uniform float u_patch_weight;           // 0: coarse, 1: patches, between: the blend after stopping
-uniform int u_circuit_count;  // circuits shown full
-uniform float u_levels[64];
+uniform vec4 u_levels[128];             // per circuit (4 a vec4); a compact circuit's times its scale
 // Circuits shown compact (render/display_light.hpp): colour x sum(level x scale x the code's value,
 // model/compact_code.hpp: 2^((code - 255) x 16 / 254), 0 for code 0).
 uniform samplerBuffer u_compact_colour;  // RGBA8 per vertex
-uniform samplerBuffer u_compact_code;    // R8 [vertex][compact circuit]
-uniform int u_compact_count;
-uniform float u_compact_levels[64];  // level x scale
+uniform usamplerBuffer u_compact_code;   // compact entries: circuit << 8 | code
 uniform float u_ambient;
 uniform vec4 u_clip_plane;  // the map view cuts away what is above the viewer's storey (GL_CLIP_DISTANCE0)
 out vec3 v_radiosity;
 
-vec3 mixed(samplerBuffer light, int base) {
+const uint kNone = 0xffffffffu;
+const float kLastFull = 1048576.0;       // added to a vertex's last full entry's circuit
+const uint kLastCompact = 0x80000000u;  // set on a vertex's last compact entry
+const uint kMaxEntries = 512u;          // kMaxCircuits: a bound for the compiler, never reached
+
+float level(uint circuit) { return u_levels[circuit >> 2u][circuit & 3u]; }
+
+vec3 mixed() {
   vec3 sum = vec3(0.0);
-  for (int c = 0; c < u_circuit_count; ++c) {
-    int i = base + c * 3;
-    sum += u_levels[c] * vec3(texelFetch(light, i).r, texelFetch(light, i + 1).r, texelFetch(light, i + 2).r);
+  if (a_light_first.x == kNone) return sum;
+  for (uint i = a_light_first.x; i < a_light_first.x + kMaxEntries; ++i) {
+    vec4 entry = texelFetch(u_light, int(i));
+    bool last = entry.a >= kLastFull;
+    sum += level(uint(last ? entry.a - kLastFull : entry.a)) * entry.rgb;
+    if (last) break;
   }
   return sum;
 }
 
 vec3 compact_mixed(int vertex) {
+  if (a_light_first.y == kNone) return vec3(0.0);
   float sum = 0.0;
-  int base = vertex * u_compact_count;
-  for (int c = 0; c < u_compact_count; ++c) {
-    float code = texelFetch(u_compact_code, base + c).r * 255.0;
-    sum += code > 0.5 ? u_compact_levels[c] * exp2((code - 255.0) * (16.0 / 254.0)) : 0.0;
+  for (uint i = a_light_first.y; i < a_light_first.y + kMaxEntries; ++i) {
+    uint entry = texelFetch(u_compact_code, int(i)).r;
+    sum += level((entry & ~kLastCompact) >> 8u) * exp2((float(entry & 255u) - 255.0) * (16.0 / 254.0));
+    if ((entry & kLastCompact) != 0u) break;
   }
-  return u_compact_count > 0 ? sum * texelFetch(u_compact_colour, vertex).rgb : vec3(0.0);
+  return sum * texelFetch(u_compact_colour, vertex).rgb;
 }
 
 void main() {
   // Each end skips the fetches it does not need: coarse frames read one polygon's values per vertex.
-  vec3 fine = u_patch_weight > 0.0 ? mixed(u_light, gl_VertexID * u_circuit_count * 3) + compact_mixed(gl_VertexID)
+  vec3 fine = u_patch_weight > 0.0 ? mixed() + compact_mixed(gl_VertexID)
                                    : vec3(0.0);
   // Three fetches instead of three per circuit: with 16 circuits the vertex stage is most of a frame.
   int p = int(a_polygon) * 3;

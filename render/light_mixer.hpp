@@ -3,14 +3,17 @@
 // one uniform upload and no buffer traffic.
 namespace walk::render {
 
-inline constexpr int kMaxCircuits = 64;  // size of the u_levels uniform array
+// Size of the u_levels uniform (vec4 x 128): 512 floats stay within GL 3.3's guaranteed 1024 vertex
+// uniform components beside the shader's other uniforms.
+inline constexpr int kMaxCircuits = 512;
 
-// Inputs: a_position (location 0), a_albedo (location 1), a_polygon (location 2, integer); u_light: R32F
-// texture buffer of the circuits shown full, [vertex][full circuit][3], indexed by gl_VertexID, mixed by
-// u_levels; u_compact_colour (RGBA8 per vertex) and u_compact_code (R8, [vertex][compact circuit]) for the
-// circuits shown compact, mixed by u_compact_levels (render/display_light.hpp); u_polygon_light: PLGT
-// already mixed by the dimmer levels on the CPU, [polygon][3], indexed by a_polygon; u_patch_weight blends
-// the two linearly. Output: v_radiosity, linear W/m2.
+// Inputs: a_position (location 0), a_albedo (location 1), a_polygon (location 2, integer), a_light_first
+// (location 3, uvec2: the vertex's first full and first compact entry, render/display_light.hpp).
+// u_light: RGBA32F texture buffer of full entries (radiosity, circuit); u_compact_code: R32UI texture
+// buffer of compact entries (circuit << 8 | code) and u_compact_colour (RGBA8 per vertex); both mixed by
+// u_levels, indexed by circuit (a compact circuit's level times its scale).
+// u_polygon_light: PLGT already mixed by the dimmer levels on the CPU, [polygon][3], indexed by a_polygon;
+// u_patch_weight blends the two linearly. Output: v_radiosity, linear W/m2.
 extern const char* const kLightMixerVertexShader;
 
 }  // namespace walk::render

@@ -66,24 +66,19 @@ struct ScenePass {
       : program(name, vertex_source.c_str(), fragment_source.c_str()),
         u_view_projection(program.uniform("u_view_projection")),
         u_light(program.uniform("u_light")),
-        u_circuit_count(program.uniform("u_circuit_count")),
-        // Unused (and so absent) when the shader has no circuits to loop over: not an error then.
+        // Absent from a program the GLSL compiler could prove never reads them: not an error.
         u_levels(glGetUniformLocation(program.id(), "u_levels[0]")),
         u_ambient(program.uniform("u_ambient")),
         u_inv_exposure(program.uniform("u_inv_exposure")),
         u_opacity(program.uniform("u_opacity")),
         u_polygon_light(glGetUniformLocation(program.id(), "u_polygon_light")),
-        // Absent from a program the GLSL compiler could prove never reads them: not an error either.
         u_compact_colour(glGetUniformLocation(program.id(), "u_compact_colour")),
         u_compact_code(glGetUniformLocation(program.id(), "u_compact_code")),
-        u_compact_count(glGetUniformLocation(program.id(), "u_compact_count")),
-        u_compact_levels(glGetUniformLocation(program.id(), "u_compact_levels[0]")),
         u_patch_weight(program.uniform("u_patch_weight")),
         u_clip_plane(program.uniform("u_clip_plane")) {}
   ShaderProgram program;
-  GLint u_view_projection, u_light, u_circuit_count, u_levels, u_ambient, u_inv_exposure, u_opacity,
-      u_polygon_light, u_compact_colour, u_compact_code, u_compact_count, u_compact_levels, u_patch_weight,
-      u_clip_plane;
+  GLint u_view_projection, u_light, u_levels, u_ambient, u_inv_exposure, u_opacity, u_polygon_light,
+      u_compact_colour, u_compact_code, u_patch_weight, u_clip_plane;
 };
 
 struct Renderer::Impl {
@@ -102,9 +97,9 @@ struct Renderer::Impl {
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_vbo = 0,
          coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0,
          compact_colour_buffer = 0, compact_colour_texture = 0, compact_code_buffer = 0,
-         compact_code_texture = 0;
+         compact_code_texture = 0, light_range_vbo = 0;
   DisplayLight display_light;
-  std::vector<float> full_levels, compact_levels;  // this frame's levels split by light form
+  std::vector<float> shader_levels;  // this frame's, as u_levels takes them (DisplayLight::shader_levels)
   // Both index forms laid out cluster by cluster (fine INDX; coarse CIDX, drawn with flat polygon light
   // while moving, empty when the bundle has none), and each cell's PVS as units of that layout.
   ClusterLayout layout;
@@ -175,6 +170,7 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &compact_code_buffer);
     glDeleteTextures(1, &polygon_texture);
     glDeleteBuffers(1, &polygon_buffer);
+    glDeleteBuffers(1, &light_range_vbo);
     glDeleteTextures(1, &light_texture);
     glDeleteBuffers(1, &light_buffer);
     glDeleteBuffers(1, &ibo);
@@ -382,17 +378,14 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
     throw Error("bundle '" + bundle.path() + "' has " + std::to_string(circuits) +
                 " circuits; the renderer mixes at most " + std::to_string(kMaxCircuits) +
                 " (merge circuits that are always dimmed together)");
-  if (bundle.light().size() != vertices.size() * circuits * 3)
-    throw Error(
-        "bundle '" + bundle.path() + "': LGHT holds " + std::to_string(bundle.light().size()) +
-        " floats, expected vertices x circuits x 3 = " + std::to_string(vertices.size() * circuits * 3));
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  const std::size_t full_values = vertices.size() * r.display_light.full_circuits().size() * 3;
-  if (full_values > std::size_t(max_texels))
-    throw Error("bundle '" + bundle.path() + "': " + std::to_string(full_values) +
-                " radiosity values exceed this GL's texture buffer limit of " + std::to_string(max_texels) +
-                "; compile with fewer circuits or a coarser mesh");
+  const std::size_t entries =
+      std::max(r.display_light.full_entries().size(), r.display_light.compact_entries().size());
+  if (entries > std::size_t(max_texels))
+    throw Error("bundle '" + bundle.path() + "': " + std::to_string(entries) +
+                " (vertex, circuit) light entries exceed this GL's texture buffer limit of " +
+                std::to_string(max_texels) + "; compile with fewer circuits or a coarser mesh");
 
   if (!bundle.textures().empty())
     r.flat_pass.emplace("scene without maps", kLightMixerVertexShader, kTonemapFragmentShader);
@@ -437,6 +430,12 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
                  coarse_vertices.data(), GL_STATIC_DRAW);
   }
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  // Where each vertex's light entries start (a_light_first), beside VERT in the same numbering.
+  const auto& ranges = r.display_light.ranges();
+  glGenBuffers(1, &r.light_range_vbo);
+  glBindBuffer(GL_ARRAY_BUFFER, r.light_range_vbo);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(ranges.size() * sizeof(VertexLightRange)), ranges.data(),
+               GL_STATIC_DRAW);
   for (auto [vao, vbo, ibo] :
        {std::tuple{&r.vao, r.vbo, r.ibo}, std::tuple{&r.refined_vao, r.vbo, r.refined_ibo},
         std::tuple{&r.coarse_vao, r.coarse_vbo, r.coarse_ibo}}) {
@@ -454,20 +453,27 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
     glEnableVertexAttribArray(2);
     glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(model::VertexRecord),
                            reinterpret_cast<const void*>(offsetof(model::VertexRecord, polygon)));
+    // The coarse form's own vertices read no per-vertex light (its light is per polygon): no ranges.
+    if (vbo == r.vbo) {
+      glBindBuffer(GL_ARRAY_BUFFER, r.light_range_vbo);
+      glEnableVertexAttribArray(3);
+      glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(VertexLightRange), nullptr);
+    }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);  // recorded in the VAO
     glBindVertexArray(0);
   }
 
-  // Per-circuit radiosity of the circuits shown full, in LGHT's own layout (LGHT itself when all are), and
-  // the compact form of the others; an empty buffer object still makes a valid texture.
+  // Each vertex's light entries of the circuits shown full and of those shown compact, and the compact
+  // form's colours; an empty buffer object still makes a valid texture.
   {
-    std::vector<float> packed;
-    const auto full = r.display_light.full_light(packed);
-    upload_texture_buffer(r.light_buffer, r.light_texture, GL_R32F, full.data(), full.size_bytes());
-    const auto codes = r.display_light.compact_codes();
-    const bool compact = !codes.empty();
+    const auto& full = r.display_light.full_entries();
+    upload_texture_buffer(r.light_buffer, r.light_texture, GL_RGBA32F, full.data(),
+                          full.size() * sizeof(FullLightEntry));
+    const auto& codes = r.display_light.compact_entries();
+    const bool compact = !r.display_light.compact_circuits().empty();
     const auto colours = bundle.compact_colour();
-    upload_texture_buffer(r.compact_code_buffer, r.compact_code_texture, GL_R8, codes.data(), codes.size());
+    upload_texture_buffer(r.compact_code_buffer, r.compact_code_texture, GL_R32UI, codes.data(),
+                          codes.size() * sizeof(CompactLightEntry));
     upload_texture_buffer(r.compact_colour_buffer, r.compact_colour_texture, GL_RGBA8,
                           compact ? colours.data() : nullptr, compact ? colours.size_bytes() : 0);
   }
@@ -683,13 +689,10 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     const ScenePass& pass = *r.pass;
     glUseProgram(pass.program.id());
     glUniformMatrix4fv(pass.u_view_projection, 1, GL_FALSE, &view_projection_matrix[0][0]);
-    r.display_light.split_levels(r.levels, r.full_levels, r.compact_levels);
-    glUniform1i(pass.u_circuit_count, GLint(r.full_levels.size()));
-    if (pass.u_levels >= 0 && !r.full_levels.empty())
-      glUniform1fv(pass.u_levels, GLsizei(r.full_levels.size()), r.full_levels.data());
-    if (pass.u_compact_count >= 0) glUniform1i(pass.u_compact_count, GLint(r.compact_levels.size()));
-    if (pass.u_compact_levels >= 0 && !r.compact_levels.empty())
-      glUniform1fv(pass.u_compact_levels, GLsizei(r.compact_levels.size()), r.compact_levels.data());
+    r.display_light.shader_levels(r.levels, r.shader_levels);
+    r.shader_levels.resize((r.shader_levels.size() + 3) / 4 * 4, 0.0f);  // whole vec4s
+    if (pass.u_levels >= 0 && !r.shader_levels.empty())
+      glUniform4fv(pass.u_levels, GLsizei(r.shader_levels.size() / 4), r.shader_levels.data());
     glUniform1f(pass.u_ambient, meta.ambient);
     glUniform1f(pass.u_inv_exposure, 1.0f / r.exposure());
     glUniform1f(pass.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));

@@ -74,9 +74,27 @@ TEST_P(CompactLightImageTest, CompiledFormsMatchTheFullFormWithinTheDisplaysStep
   EXPECT_EQ(as_compiled.compact_circuits(), std::vector<std::uint32_t>{0});
   EXPECT_EQ(as_compiled.full_circuits(), std::vector<std::uint32_t>{1});
   EXPECT_TRUE(full.compact_circuits().empty());
-  // One float RGB (12 bytes) of the two circuits' 24 per vertex becomes 1 byte plus the shared colour.
-  EXPECT_EQ(as_compiled.gpu_bytes(), bundle->vertices().size() * (12 + 4 + 1));
-  EXPECT_EQ(full.gpu_bytes(), full.full_form_bytes());
+  // Both lamps reach every vertex: one full entry (16 bytes) and one compact (4 bytes, plus the vertex's
+  // shared colour) in place of two full ones, beside each vertex's 8-byte first entries.
+  const std::size_t vertices = bundle->vertices().size();
+  EXPECT_EQ(full.full_entries().size(), 2 * vertices);
+  EXPECT_EQ(as_compiled.full_entries().size(), vertices);
+  EXPECT_EQ(as_compiled.compact_entries().size(), vertices);
+  EXPECT_EQ(as_compiled.gpu_bytes(), vertices * (8 + 16 + 4 + 4));
+  EXPECT_EQ(full.gpu_bytes(), vertices * (8 + 2 * 16));
+  // The sparse entries mix exactly as the dense arrays would.
+  const std::vector<float> levels{0.7f, 0.3f};
+  const auto light = bundle->light();
+  for (std::size_t v = 0; v < vertices; ++v) {
+    glm::vec3 dense(0.0f);
+    for (std::size_t c = 0; c < 2; ++c)
+      dense += levels[c] *
+               glm::vec3(light[(v * 2 + c) * 3], light[(v * 2 + c) * 3 + 1], light[(v * 2 + c) * 3 + 2]);
+    const glm::vec3 mixed = full.mixed(v, levels);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(mixed[k], dense[k]) << "vertex " << v;
+    }
+  }
 
   Renderer compiled_renderer(*bundle), full_renderer(*bundle, DisplayLightForm::Full);
   int worst = 0;

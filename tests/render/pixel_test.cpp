@@ -2,10 +2,15 @@
 // colour = albedo * ambient + sum_c level[c] * L[v][c], divided by exposure, sRGB encoded.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "model/error.hpp"
+#include "render/display_light.hpp"
+#include "render/light_mixer.hpp"
 #include "render_test_support.hpp"
 #include "two_rooms.hpp"
 
@@ -152,21 +157,55 @@ TEST_P(PixelTest, GlassIsBlendedOverTheRoomBehindIt) {
   EXPECT_EQ(centre(image)[3], 255);
 }
 
-TEST_P(PixelTest, MoreThan64CircuitsIsAClearError) {
-  scene_.circuits = 65;
+TEST_P(PixelTest, MoreCircuitsThanTheLevelsUniformHoldsIsAClearError) {
+  scene_.circuits = kMaxCircuits + 1;
   auto bundle = open_two_rooms(scene_, "circuits");
   try {
     Renderer renderer(*bundle);
-    FAIL() << "65 circuits accepted";
+    FAIL() << kMaxCircuits + 1 << " circuits accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("65 circuits"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("64"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(std::to_string(kMaxCircuits + 1) + " circuits"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("at most " + std::to_string(kMaxCircuits)), std::string::npos)
+        << e.what();
   }
-  scene_.circuits = 64;
-  auto ok = open_two_rooms(scene_, "circuits64");
-  const Image image = render(*ok, looking_along_x(-1.0));
-  expect_colour(centre(image), radiosity(scene_, false, scene_.wall_factor, 1, 1), scene_.exposure,
-                "64 circuits");
+}
+
+// A building with many circuits, each reaching a few rooms: the two rooms' light moved onto circuits 37 and
+// 509 of 512 (the last vec4 of u_levels), the rest dark. Each vertex keeps two entries, and the dimmers of
+// those circuits mix them as the two-circuit scene's do.
+TEST_P(PixelTest, ManyCircuitsMixOnlyTheCircuitsThatReachAVertex) {
+  scene_.circuits = kMaxCircuits;
+  model::BundleContents contents = make_two_rooms(scene_);
+  const std::size_t n = std::size_t(kMaxCircuits), far_a = 37, far_b = 509;
+  for (std::size_t v = 0; v < contents.vertices.size(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      std::swap(contents.light[(v * n + 0) * 3 + k], contents.light[(v * n + far_a) * 3 + k]);
+      std::swap(contents.light[(v * n + 1) * 3 + k], contents.light[(v * n + far_b) * 3 + k]);
+    }
+  const std::size_t dark = contents.vertices.size() - 1;  // a vertex no circuit reaches
+  std::fill_n(contents.light.begin() + std::ptrdiff_t(dark * n * 3), n * 3, 0.0f);
+  auto bundle = open_bundle(contents, "many_circuits");
+  const DisplayLight light(*bundle, DisplayLightForm::AsCompiled);
+  EXPECT_EQ(light.full_entries().size(), 2 * dark) << "two of 512 circuits a vertex";
+  EXPECT_EQ(light.ranges()[dark].full_first, VertexLightRange::kNone);
+  EXPECT_EQ(light.ranges()[dark - 1].full_first, 2 * (dark - 1));
+  const std::vector<float> all_on(n, 1.0f);
+  EXPECT_EQ(light.mixed(dark, all_on), glm::vec3(0.0f));
+  EXPECT_EQ(light.mixed(dark - 1, all_on)[2], contents.light[((dark - 1) * n + far_a) * 3 + 2] +
+                                                  contents.light[((dark - 1) * n + far_b) * 3 + 2]);
+  Renderer renderer(*bundle);
+  std::vector<float> levels(n, 1.0f);
+  levels[far_b] = 0.5f;
+  renderer.set_dimmers(levels);
+  const Image image = render(*bundle, looking_along_x(+1.0), &renderer);
+  expect_colour(centre(image), radiosity(scene_, true, scene_.wall_factor, 1, 0.5), scene_.exposure,
+                "circuit 509 at 0.5");
+  levels[far_a] = 0.0f;
+  renderer.set_dimmers(levels);
+  const Image dimmed = render(*bundle, looking_along_x(+1.0), &renderer);
+  expect_colour(centre(dimmed), radiosity(scene_, true, scene_.wall_factor, 0, 0.5), scene_.exposure,
+                "circuit 37 off too");
 }
 
 TEST_P(PixelTest, ReadingAtAnotherSizeIsAnError) {
