@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "model/error.hpp"
 #include "model/model.hpp"
@@ -289,6 +290,8 @@ struct Renderer::Impl {
     return out;
   }
   void draw_scene(const View& view, int width, int height, const DrawOptions& options);
+  void warm_up(const View& view, int width, int height);
+  std::pair<int, int> warmed_size{0, 0};
   void present(int width, int height) const;
   void choose_diagonals();
   void draw_map(const View& view, int width, int height);
@@ -918,8 +921,30 @@ void Renderer::Impl::choose_diagonals() {
   check_gl("uploading the chosen diagonals");
 }
 
+// The first frame down a drawing path costs llvmpipe its JIT compile of that state: the half-resolution
+// level's scaling blit 40-90 ms once, a level's first frame several ms more. Each moving level is drawn
+// once, off the record, at a new frame size, so no moving frame shows the hitch and no cost model learns
+// it (a 90 ms first half-resolution frame made M's governor shun that level).
+void Renderer::Impl::warm_up(const View& view, int width, int height) {
+  warmed_size = {width, height};
+  const FrameStats kept_stats = stats;
+  const PortalPolicy kept_policy = portal_policy;
+  for (int l = 0; l < kMovingLevels; ++l) {
+    const auto level = MovingLevel(l);
+    draw_scene(view, width, height,
+               DrawOptions{.patch_weight = level == MovingLevel::Patches ? 1.0f : 0.0f,
+                           .resolution = level == MovingLevel::Reduced ? 0.5f : 1.0f,
+                           .lod_pixels = moving_error_pixels(level)});
+  }
+  glFinish();
+  stats = kept_stats;
+  stats.warm_up_frames += kMovingLevels;
+  portal_policy = kept_policy;
+}
+
 bool Renderer::refine(const View& view, int width, int height) {
   auto& r = *impl_;
+  if (r.warmed_size != std::pair{width, height}) r.warm_up(view, width, height);
   const bool moved = r.restart || !r.shown_view || !same_view(*r.shown_view, view) ||
                      width != r.shown_width || height != r.shown_height;
   const bool relit = r.shown_levels != r.levels;

@@ -84,12 +84,15 @@ struct FrameStats {
   std::uint32_t quads_subdivided = 0;  // quads drawn as bilinear sub-quads at the last choice
   std::uint32_t subdivision_triangles = 0;
   double gpu_ms = -1.0;  // GPU time of the newest frame timed by queries (it lags a frame or two); -1: none
+  // Frames refine() drew off the record to warm each moving level at a new frame size (not in frames_drawn).
+  std::uint64_t warm_up_frames = 0;
 };
 
 class Renderer {
  public:
   // Uploads the bundle's buffers into the current context, which must stay current for every call and for
-  // the destructor. The bundle must outlive the renderer. Throws walk::Error for more than 64 circuits.
+  // the destructor. The bundle must outlive the renderer. Throws walk::Error for more than kMaxCircuits
+  // circuits (512).
   // `light_form`: each circuit in the form the compiler chose (compact where within its limit), or all full.
   explicit Renderer(const model::Bundle& bundle, DisplayLightForm light_form = DisplayLightForm::AsCompiled);
   ~Renderer();

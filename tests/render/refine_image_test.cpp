@@ -282,6 +282,26 @@ TEST_P(RefineImageTest, SubdivisionLeavesNoCracks) {
 
 // The Reduced moving level draws at half size and scales up: a flat wall keeps its colour, the frame its
 // size, and the next still frame is full resolution again.
+// The first frame down each drawing path pays llvmpipe's JIT (the half-resolution blit 40-90 ms): refine()
+// draws each moving level once off the record at a new frame size, before the frame it shows.
+TEST_P(RefineImageTest, EachNewFrameSizeWarmsTheMovingLevelsOffTheRecord) {
+  auto bundle = open_two_rooms(TwoRooms{}, "warm_up");
+  Renderer renderer(*bundle);
+  ASSERT_TRUE(renderer.refine(looking_along_x(+1.0), kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().warm_up_frames, std::uint64_t(kMovingLevels));
+  EXPECT_EQ(renderer.last_stats().frames_drawn, 1u) << "the warm-up frames are not counted as drawn";
+  const Image shown = renderer.read_pixels(kWidth, kHeight);
+  ASSERT_TRUE(renderer.refine(looking_along_x(-1.0), kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().warm_up_frames, std::uint64_t(kMovingLevels)) << "same size: once";
+  ASSERT_TRUE(renderer.refine(looking_along_x(+1.0), kWidth / 2, kHeight / 2));
+  EXPECT_EQ(renderer.last_stats().warm_up_frames, std::uint64_t(2 * kMovingLevels)) << "a new size";
+  // What was shown is the frame asked for (nothing known yet: patches, full size), not the last warm-up
+  // frame (half resolution): the same bytes as a plain draw of that view.
+  Renderer fresh(*bundle);
+  fresh.draw(looking_along_x(+1.0), kWidth, kHeight);
+  EXPECT_EQ(shown.rgba, fresh.read_pixels(kWidth, kHeight).rgba);
+}
+
 TEST_P(RefineImageTest, ReducedMovingLevelIsHalfResolution) {
   TwoRooms scene;
   auto bundle = open_two_rooms(scene, "reduced");
