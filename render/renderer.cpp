@@ -118,9 +118,15 @@ struct Renderer::Impl {
   std::uint32_t cells_seen = 0;  // reached by that walk
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
-  // Coarse light: PLGT per circuit kept here, mixed on the CPU when the levels change (polygons x circuits,
-  // a few thousand multiply-adds) so the coarse vertex stage fetches 3 values instead of 3 per circuit.
-  std::vector<float> polygon_light;
+  // Coarse light: PLGT kept here sparse (each polygon's circuits that reach it, in circuit order), mixed on
+  // the CPU when the levels change, so the coarse vertex stage fetches 3 values instead of 3 per circuit. A
+  // dimmer turned while the viewer walks mixes it every frame: S with 34 circuits has 1.7 a polygon.
+  struct PolygonLightEntry {
+    std::uint32_t circuit;
+    float rgb[3];
+  };
+  std::vector<std::uint32_t> polygon_first;  // per polygon, and one past the last: its entries
+  std::vector<PolygonLightEntry> polygon_entries;
   std::vector<float> polygon_mixed_levels{-1.0f};  // levels of the mix in polygon_buffer; -1: none yet
   void update_polygon_mix();
   std::vector<float> levels;
@@ -480,7 +486,20 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
     upload_texture_buffer(r.compact_colour_buffer, r.compact_colour_texture, GL_RGBA8,
                           compact ? colours.data() : nullptr, compact ? colours.size_bytes() : 0);
   }
-  r.polygon_light = polygon_light(bundle);
+  {
+    const std::vector<float> dense = polygon_light(bundle);
+    const std::size_t circuits = bundle.circuits().size(), count = bundle.polygons().size();
+    r.polygon_first.reserve(count + 1);
+    for (std::size_t p = 0; p < count; ++p) {
+      r.polygon_first.push_back(std::uint32_t(r.polygon_entries.size()));
+      for (std::size_t c = 0; c < circuits; ++c) {
+        const float* l = &dense[(p * circuits + c) * 3];
+        if (l[0] != 0.0f || l[1] != 0.0f || l[2] != 0.0f)
+          r.polygon_entries.push_back({std::uint32_t(c), {l[0], l[1], l[2]}});
+      }
+    }
+    r.polygon_first.push_back(std::uint32_t(r.polygon_entries.size()));
+  }
   glGenBuffers(1, &r.polygon_buffer);
   glBindBuffer(GL_TEXTURE_BUFFER, r.polygon_buffer);
   glBufferData(GL_TEXTURE_BUFFER,
@@ -769,11 +788,13 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
 
 void Renderer::Impl::update_polygon_mix() {
   if (polygon_mixed_levels == levels) return;
-  const std::size_t circuits = levels.size(), count = bundle.polygons().size();
+  const std::size_t count = bundle.polygons().size();
   std::vector<float> mixed(std::max<std::size_t>(count * 3, 1), 0.0f);
+  // A left-out zero changes no sum: the same mix as over every circuit.
   for (std::size_t p = 0; p < count; ++p)
-    for (std::size_t c = 0; c < circuits; ++c)
-      for (int k = 0; k < 3; ++k) mixed[p * 3 + k] += levels[c] * polygon_light[(p * circuits + c) * 3 + k];
+    for (std::uint32_t i = polygon_first[p]; i < polygon_first[p + 1]; ++i)
+      for (int k = 0; k < 3; ++k)
+        mixed[p * 3 + k] += levels[polygon_entries[i].circuit] * polygon_entries[i].rgb[k];
   glBindBuffer(GL_TEXTURE_BUFFER, polygon_buffer);
   glBufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(mixed.size() * sizeof(float)), mixed.data());
   glBindBuffer(GL_TEXTURE_BUFFER, 0);

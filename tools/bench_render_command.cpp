@@ -358,6 +358,33 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
                         " draw ranges; views along the walk; error against patches at full detail"});
     }
     {
+      // Walking while an operator turns the dimmers: the coarse level with every circuit's level changed
+      // each frame, so its polygon light is mixed again on the CPU before each frame (against `coarse`).
+      std::vector<float> levels(bundle->circuits().size()), defaults(levels.size());
+      for (std::size_t c = 0; c < levels.size(); ++c) defaults[c] = bundle->circuits()[c].default_level;
+      std::vector<double> t;
+      for (std::size_t i = 0, k = 0; i < walk.size(); i += kLevelViewStride, ++k) {
+        for (std::size_t c = 0; c < levels.size(); ++c) levels[c] = (k + c) % 2 ? 1.0f : 0.5f;
+        renderer.set_dimmers(levels);
+        const auto t0 = Clock::now();
+        renderer.draw(walk[i], width, height, {.patch_weight = 0.0f});
+        glFinish();
+        t.push_back(ms_since(t0));
+        progress.advance();
+      }
+      renderer.set_dimmers(defaults);
+      print(scene, {"level",
+                    "coarse-dimming",
+                    t.size(),
+                    percentile(t, 0.5),
+                    percentile(t, 0.99),
+                    0,
+                    0,
+                    {},
+                    fmt::format("coarse with the {} circuits' levels changed each frame (mixed on the CPU)",
+                                levels.size())});
+    }
+    {
       // The floor under every level: a frame with nothing in view (clear, blit and finish), and the same
       // frame with the coarsest level of every cluster forced (every error allowed).
       render::View empty = walk.front();
