@@ -16,9 +16,10 @@ void RefineSchedule::view_changed(float moving_patch_weight) {
 }
 
 void RefineSchedule::light_changed() {
-  if (stage_ == RefineStage::Diagonals || stage_ == RefineStage::Accumulating ||
-      stage_ == RefineStage::Idle) {
-    stage_ = after_blend();
+  if (stage_ == RefineStage::Relit || stage_ == RefineStage::Diagonals ||
+      stage_ == RefineStage::Accumulating || stage_ == RefineStage::Idle) {
+    // Without diagonals, accumulation's first sample is the plain patch frame already.
+    stage_ = settings_.diagonals ? RefineStage::Relit : RefineStage::Accumulating;
     sample_ = 0;
   }
   // Moving or blending: the next frames redraw everything anyway.
@@ -41,6 +42,9 @@ RefineStep RefineSchedule::next() {
       if (blend_step_ >= settings_.blend_steps) stage_ = after_blend();
       return {RefineStage::Blending, weight_, -1, false};
     }
+    case RefineStage::Relit:
+      stage_ = RefineStage::Diagonals;
+      return {RefineStage::Relit, 1.0f, -1, false};
     case RefineStage::Diagonals:
       stage_ = RefineStage::Accumulating;
       sample_ = 0;

@@ -18,7 +18,10 @@ struct RefineSettings {
   int subdivision_depth = 3;
 };
 
-enum class RefineStage : std::uint8_t { Moving, Blending, Diagonals, Accumulating, Idle };
+// Relit: the view is still and the dimmers moved; the new mix as a plain patch frame (the bundle's
+// diagonals, nothing subdivided), since choosing diagonals and subdividing cost the CPU a multiple of a
+// frame (S: 54 ms) and a dimmer being turned changes the mix every frame. Diagonals follow once it rests.
+enum class RefineStage : std::uint8_t { Moving, Blending, Relit, Diagonals, Accumulating, Idle };
 
 struct RefineStep {
   RefineStage stage = RefineStage::Idle;
@@ -33,8 +36,8 @@ class RefineSchedule {
   explicit RefineSchedule(RefineSettings settings = {});
   // The view moved (or the frame size changed): the next frame is a moving frame at `moving_patch_weight`.
   void view_changed(float moving_patch_weight);
-  // Dimmers changed with the view still: patches stay; diagonals are chosen again for the new mix and
-  // accumulation starts again (no coarse flash).
+  // Dimmers changed with the view still: patches stay (no coarse flash); with diagonals on, one Relit frame
+  // shows the new mix, then diagonals are chosen again for it, and accumulation starts again.
   void light_changed();
   // The step for this frame; advances the schedule.
   [[nodiscard]] RefineStep next();

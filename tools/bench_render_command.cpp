@@ -372,7 +372,32 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
         t.push_back(ms_since(t0));
         progress.advance();
       }
+      // Standing still while the dimmers turn: every frame a new mix at full detail (refine()).
+      const render::View resting = walk[walk.size() / 2];
+      while (renderer.refine(resting, width, height)) {
+      }
+      std::vector<double> t_still;
+      for (std::size_t k = 0; k < t.size(); ++k) {
+        for (std::size_t c = 0; c < levels.size(); ++c) levels[c] = (k + c) % 2 ? 1.0f : 0.5f;
+        renderer.set_dimmers(levels);
+        const auto t0 = Clock::now();
+        renderer.refine(resting, width, height);
+        glFinish();
+        t_still.push_back(ms_since(t0));
+        progress.advance();
+      }
       renderer.set_dimmers(defaults);
+      while (renderer.refine(resting, width, height)) {
+      }
+      print(scene, {"level",
+                    "still-dimming",
+                    t_still.size(),
+                    percentile(t_still, 0.5),
+                    percentile(t_still, 0.99),
+                    0,
+                    0,
+                    {},
+                    "a still view, every circuit's level changed each frame (refine())"});
       print(scene, {"level",
                     "coarse-dimming",
                     t.size(),

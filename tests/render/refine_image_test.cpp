@@ -208,11 +208,14 @@ TEST_P(RefineImageTest, IdleRendererDrawsNothingUntilSomethingChanges) {
   EXPECT_EQ(renderer.last_stats().stage, RefineStage::Idle);
   EXPECT_EQ(renderer.read_pixels(kWidth, kHeight).rgba, done.rgba);
 
-  // A dimmer change redraws (samples again, no coarse frame), then goes idle again.
+  // A dimmer change redraws (a plain patch frame, no coarse one; then diagonals and samples again), then
+  // goes idle again.
   renderer.set_dimmers(std::vector<float>{0.5f, 1.0f});
   ASSERT_TRUE(renderer.refine(view, kWidth, kHeight));
-  EXPECT_EQ(renderer.last_stats().stage, RefineStage::Diagonals);
+  EXPECT_EQ(renderer.last_stats().stage, RefineStage::Relit);
   EXPECT_EQ(renderer.last_stats().patch_weight, 1.0f);
+  ASSERT_TRUE(renderer.refine(view, kWidth, kHeight));
+  EXPECT_EQ(renderer.last_stats().stage, RefineStage::Diagonals);
   (void)converge(renderer, view);
   EXPECT_FALSE(renderer.refine(view, kWidth, kHeight));
   // Setting the same levels again is not a change.

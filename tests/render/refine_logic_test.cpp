@@ -56,11 +56,28 @@ TEST(RefineSchedule, LightChangeRestartsSamplesNotTheBlend) {
   for (int i = 0; i < 1 + 4 + 1 + 3; ++i) (void)schedule.next();
   EXPECT_FALSE(schedule.next().draws());
   schedule.light_changed();
+  const RefineStep relit = schedule.next();
+  EXPECT_EQ(relit.stage, RefineStage::Relit) << "first the new mix as a plain patch frame";
+  EXPECT_EQ(relit.patch_weight, 1.0f);
+  EXPECT_FALSE(relit.diagonals);
+  schedule.light_changed();  // the dimmer is still being turned: another plain frame
+  EXPECT_EQ(schedule.next().stage, RefineStage::Relit);
   EXPECT_EQ(schedule.next().stage, RefineStage::Diagonals) << "the new mix needs its own diagonals";
   const RefineStep step = schedule.next();
   EXPECT_EQ(step.stage, RefineStage::Accumulating);
   EXPECT_EQ(step.sample, 0);
   EXPECT_EQ(step.patch_weight, 1.0f);
+}
+
+TEST(RefineSchedule, WithoutDiagonalsALightChangeGoesStraightToTheSamples) {
+  RefineSchedule schedule({.blend_steps = 0, .aa_samples = 2, .samples_per_frame = 0, .diagonals = false});
+  schedule.view_changed(1.0f);
+  for (int i = 0; i < 1 + 2; ++i) (void)schedule.next();
+  EXPECT_FALSE(schedule.next().draws());
+  schedule.light_changed();
+  const RefineStep step = schedule.next();
+  EXPECT_EQ(step.stage, RefineStage::Accumulating);
+  EXPECT_EQ(step.sample, 0) << "sample 0 is the plain patch frame";
 }
 
 TEST(Jitter, FirstSampleIsThePixelCentreAndWeightsAreTheTent) {
