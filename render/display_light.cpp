@@ -4,14 +4,63 @@
 
 namespace walk::render {
 
+namespace {
+
+// Appends the circuits of `row` ([circuit][3] floats) in `circuits` whose light is not zero, marking the
+// last; returns the first entry, or kNone when none is lit.
+std::uint32_t append_lit(const float* row, std::span<const std::uint32_t> circuits,
+                         std::vector<FullLightEntry>& entries) {
+  const std::size_t first = entries.size();
+  for (const std::uint32_t c : circuits) {
+    const float* l = &row[std::size_t(c) * 3];
+    if (l[0] != 0.0f || l[1] != 0.0f || l[2] != 0.0f) entries.push_back({{l[0], l[1], l[2]}, float(c)});
+  }
+  if (entries.size() == first) return VertexLightRange::kNone;
+  entries.back().circuit += kLastFullEntry;
+  return std::uint32_t(first);
+}
+
+// Level x radiosity summed over the run of entries from `first` (kNone: none), as the vertex shader does.
+glm::vec3 sum_lit(const std::vector<FullLightEntry>& entries, std::uint32_t first,
+                  std::span<const float> levels) {
+  glm::vec3 sum(0.0f);
+  for (std::uint32_t i = first; i != VertexLightRange::kNone; ++i) {
+    const FullLightEntry& e = entries[i];
+    const bool last = e.circuit >= kLastFullEntry;
+    sum += levels[std::size_t(last ? e.circuit - kLastFullEntry : e.circuit)] *
+           glm::vec3(e.rgb[0], e.rgb[1], e.rgb[2]);
+    if (last) break;
+  }
+  return sum;
+}
+
+// PLGT when the bundle has it; otherwise each polygon's plain mean of its vertices' light, so the coarse
+// level always exists.
+std::vector<float> polygon_light(const model::Bundle& bundle) {
+  const std::size_t circuits = bundle.circuits().size(), n = bundle.polygons().size() * circuits * 3;
+  if (bundle.polygon_light().size() == n)
+    return {bundle.polygon_light().begin(), bundle.polygon_light().end()};
+  std::vector<float> out(n, 0.0f);
+  const auto light = bundle.light();
+  for (std::size_t p = 0; p < bundle.polygons().size(); ++p) {
+    const auto& poly = bundle.polygons()[p];
+    if (poly.vertex_count == 0) continue;
+    for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
+      for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] += light[v * circuits * 3 + k];
+    for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] /= float(poly.vertex_count);
+  }
+  return out;
+}
+
+}  // namespace
+
 DisplayLight::DisplayLight(const model::Bundle& bundle, DisplayLightForm form) : bundle_(bundle) {
   const auto circuits = bundle.circuits();
   const bool has_compact = !bundle.compact_intensity().empty();
-  std::vector<char> compact(circuits.size(), 0);
   for (std::uint32_t c = 0; c < circuits.size(); ++c) {
-    compact[c] = form == DisplayLightForm::AsCompiled && has_compact &&
-                 circuits[c].light_form == model::LightForm::Compact;
-    (compact[c] ? compact_ : full_).push_back(c);
+    const bool compact = form == DisplayLightForm::AsCompiled && has_compact &&
+                         circuits[c].light_form == model::LightForm::Compact;
+    (compact ? compact_ : full_).push_back(c);
   }
   const std::size_t n = circuits.size(), vertices = bundle.vertices().size();
   const auto light = bundle.light();
@@ -19,23 +68,22 @@ DisplayLight::DisplayLight(const model::Bundle& bundle, DisplayLightForm form) :
   ranges_.resize(vertices);
   for (std::size_t v = 0; v < vertices; ++v) {
     VertexLightRange& range = ranges_[v];
-    const std::size_t full_first = full_entries_.size(), compact_first = compact_entries_.size();
-    for (const std::uint32_t c : full_) {
-      const float* l = &light[(v * n + c) * 3];
-      if (l[0] != 0.0f || l[1] != 0.0f || l[2] != 0.0f)
-        full_entries_.push_back({{l[0], l[1], l[2]}, float(c)});
-    }
+    range.full_first = append_lit(&light[v * n * 3], full_, full_entries_);
+    const std::size_t compact_first = compact_entries_.size();
     for (const std::uint32_t c : compact_)
       if (const std::uint8_t code = codes[v * n + c]; code != 0) compact_entries_.push_back(c << 8 | code);
-    if (full_entries_.size() > full_first) {
-      range.full_first = std::uint32_t(full_first);
-      full_entries_.back().circuit += kLastFullEntry;
-    }
     if (compact_entries_.size() > compact_first) {
       range.compact_first = std::uint32_t(compact_first);
       compact_entries_.back() |= kLastCompactEntry;
     }
   }
+  // The coarse level's light has every circuit as floats, compact ones included.
+  std::vector<std::uint32_t> every(n);
+  for (std::uint32_t c = 0; c < n; ++c) every[c] = c;
+  const std::vector<float> dense = polygon_light(bundle);
+  polygon_first_.resize(bundle.polygons().size());
+  for (std::size_t p = 0; p < polygon_first_.size(); ++p)
+    polygon_first_[p] = append_lit(&dense[p * n * 3], every, polygon_entries_);
 }
 
 void DisplayLight::shader_levels(std::span<const float> levels, std::vector<float>& out) const {
@@ -45,14 +93,7 @@ void DisplayLight::shader_levels(std::span<const float> levels, std::vector<floa
 
 glm::vec3 DisplayLight::mixed(std::size_t vertex, std::span<const float> levels) const {
   const VertexLightRange& range = ranges_[vertex];
-  glm::vec3 sum(0.0f);
-  for (std::uint32_t i = range.full_first; i != VertexLightRange::kNone; ++i) {
-    const FullLightEntry& e = full_entries_[i];
-    const bool last = e.circuit >= kLastFullEntry;
-    sum += levels[std::size_t(last ? e.circuit - kLastFullEntry : e.circuit)] *
-           glm::vec3(e.rgb[0], e.rgb[1], e.rgb[2]);
-    if (last) break;
-  }
+  const glm::vec3 sum = sum_lit(full_entries_, range.full_first, levels);
   if (compact_.empty()) return sum;
   float intensity = 0.0f;
   for (std::uint32_t i = range.compact_first; i != VertexLightRange::kNone; ++i) {
@@ -63,6 +104,14 @@ glm::vec3 DisplayLight::mixed(std::size_t vertex, std::span<const float> levels)
   }
   const auto& colour = bundle_.compact_colour()[vertex];
   return sum + intensity * glm::vec3(colour[0], colour[1], colour[2]) / 255.0f;
+}
+
+void DisplayLight::polygon_mix(std::span<const float> levels, std::vector<float>& out) const {
+  out.assign(polygon_first_.size() * 3, 0.0f);
+  for (std::size_t p = 0; p < polygon_first_.size(); ++p) {
+    const glm::vec3 sum = sum_lit(polygon_entries_, polygon_first_[p], levels);
+    for (int k = 0; k < 3; ++k) out[p * 3 + k] = sum[k];
+  }
 }
 
 std::size_t DisplayLight::gpu_bytes() const {

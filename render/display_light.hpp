@@ -62,6 +62,11 @@ class DisplayLight {
   // The mixed radiosity at `vertex` for `levels` (circuit order), as the vertex shader computes it.
   [[nodiscard]] glm::vec3 mixed(std::size_t vertex, std::span<const float> levels) const;
 
+  // The coarse level's flat light, mixed on the CPU when the levels change: PLGT (or, where the bundle
+  // lacks it, each polygon's mean of its vertices), every circuit as floats, kept sparse like the vertices'.
+  // `out` becomes [polygon][3]. A dimmer turned while the viewer walks mixes it every frame.
+  void polygon_mix(std::span<const float> levels, std::vector<float>& out) const;
+
   // Display memory of the light, and what LGHT alone would take.
   [[nodiscard]] std::size_t gpu_bytes() const;
   [[nodiscard]] std::size_t full_form_bytes() const;
@@ -72,6 +77,8 @@ class DisplayLight {
   std::vector<VertexLightRange> ranges_;
   std::vector<FullLightEntry> full_entries_;
   std::vector<CompactLightEntry> compact_entries_;
+  std::vector<std::uint32_t> polygon_first_;  // per polygon, its first entry in polygon_entries_
+  std::vector<FullLightEntry> polygon_entries_;
 };
 
 }  // namespace walk::render

@@ -7,8 +7,6 @@ namespace walk::render {
 static_assert(model::kCompactStops == 16.0, "the vertex shader decodes LINT with 16 stops written out");
 static_assert(kMaxCircuits == 512, "u_levels is vec4[128] and kMaxEntries 512 in the shader below");
 
-// R32F with three fetches: RGB32F texture buffers need GL 4.0, and padding to RGBA32F would cost a third
-// more memory than the bundle's own LGHT layout, which is uploaded as is.
 // Each vertex loops over its own entries only (render/display_light.hpp), one texel each: the full entry's
 // RGBA32F holds radiosity and circuit together.
 const char* const kLightMixerVertexShader = R"glsl(#version 330 core

@@ -118,15 +118,9 @@ struct Renderer::Impl {
   std::uint32_t cells_seen = 0;  // reached by that walk
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
-  // Coarse light: PLGT kept here sparse (each polygon's circuits that reach it, in circuit order), mixed on
-  // the CPU when the levels change, so the coarse vertex stage fetches 3 values instead of 3 per circuit. A
-  // dimmer turned while the viewer walks mixes it every frame: S with 34 circuits has 1.7 a polygon.
-  struct PolygonLightEntry {
-    std::uint32_t circuit;
-    float rgb[3];
-  };
-  std::vector<std::uint32_t> polygon_first;  // per polygon, and one past the last: its entries
-  std::vector<PolygonLightEntry> polygon_entries;
+  // Coarse light (DisplayLight::polygon_mix) uploaded when the levels change, so the coarse vertex stage
+  // fetches 3 values instead of 3 per circuit.
+  std::vector<float> polygon_mix;                  // [polygon][3], reused from one mix to the next
   std::vector<float> polygon_mixed_levels{-1.0f};  // levels of the mix in polygon_buffer; -1: none yet
   void update_polygon_mix();
   std::vector<float> levels;
@@ -341,24 +335,6 @@ void make_shaded_vao(GLuint& vao, GLuint& vbo) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
-// PLGT when the bundle has it; otherwise each polygon's plain mean of its vertices' light, so the coarse
-// level always exists.
-std::vector<float> polygon_light(const model::Bundle& bundle) {
-  const std::size_t circuits = bundle.circuits().size(), n = bundle.polygons().size() * circuits * 3;
-  if (bundle.polygon_light().size() == n)
-    return {bundle.polygon_light().begin(), bundle.polygon_light().end()};
-  std::vector<float> out(n, 0.0f);
-  const auto light = bundle.light();
-  for (std::size_t p = 0; p < bundle.polygons().size(); ++p) {
-    const auto& poly = bundle.polygons()[p];
-    if (poly.vertex_count == 0) continue;
-    for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
-      for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] += light[v * circuits * 3 + k];
-    for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] /= float(poly.vertex_count);
-  }
-  return out;
-}
-
 // One glMultiDrawElements over a batch's ranges of the bound VAO's index buffer.
 void draw_batch(const DrawBatch& batch) {
   if (batch.empty()) return;
@@ -485,20 +461,6 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
                           codes.size() * sizeof(CompactLightEntry));
     upload_texture_buffer(r.compact_colour_buffer, r.compact_colour_texture, GL_RGBA8,
                           compact ? colours.data() : nullptr, compact ? colours.size_bytes() : 0);
-  }
-  {
-    const std::vector<float> dense = polygon_light(bundle);
-    const std::size_t circuits = bundle.circuits().size(), count = bundle.polygons().size();
-    r.polygon_first.reserve(count + 1);
-    for (std::size_t p = 0; p < count; ++p) {
-      r.polygon_first.push_back(std::uint32_t(r.polygon_entries.size()));
-      for (std::size_t c = 0; c < circuits; ++c) {
-        const float* l = &dense[(p * circuits + c) * 3];
-        if (l[0] != 0.0f || l[1] != 0.0f || l[2] != 0.0f)
-          r.polygon_entries.push_back({std::uint32_t(c), {l[0], l[1], l[2]}});
-      }
-    }
-    r.polygon_first.push_back(std::uint32_t(r.polygon_entries.size()));
   }
   glGenBuffers(1, &r.polygon_buffer);
   glBindBuffer(GL_TEXTURE_BUFFER, r.polygon_buffer);
@@ -788,15 +750,9 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
 
 void Renderer::Impl::update_polygon_mix() {
   if (polygon_mixed_levels == levels) return;
-  const std::size_t count = bundle.polygons().size();
-  std::vector<float> mixed(std::max<std::size_t>(count * 3, 1), 0.0f);
-  // A left-out zero changes no sum: the same mix as over every circuit.
-  for (std::size_t p = 0; p < count; ++p)
-    for (std::uint32_t i = polygon_first[p]; i < polygon_first[p + 1]; ++i)
-      for (int k = 0; k < 3; ++k)
-        mixed[p * 3 + k] += levels[polygon_entries[i].circuit] * polygon_entries[i].rgb[k];
+  display_light.polygon_mix(levels, polygon_mix);
   glBindBuffer(GL_TEXTURE_BUFFER, polygon_buffer);
-  glBufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(mixed.size() * sizeof(float)), mixed.data());
+  glBufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(polygon_mix.size() * sizeof(float)), polygon_mix.data());
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   polygon_mixed_levels = levels;
 }

@@ -360,32 +360,32 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
     {
       // Walking while an operator turns the dimmers: the coarse level with every circuit's level changed
       // each frame, so its polygon light is mixed again on the CPU before each frame (against `coarse`).
+      // Standing still while they turn: every frame a new mix at full detail (refine()).
       std::vector<float> levels(bundle->circuits().size()), defaults(levels.size());
       for (std::size_t c = 0; c < levels.size(); ++c) defaults[c] = bundle->circuits()[c].default_level;
-      std::vector<double> t;
-      for (std::size_t i = 0, k = 0; i < walk.size(); i += kLevelViewStride, ++k) {
-        for (std::size_t c = 0; c < levels.size(); ++c) levels[c] = (k + c) % 2 ? 1.0f : 0.5f;
-        renderer.set_dimmers(levels);
-        const auto t0 = Clock::now();
-        renderer.draw(walk[i], width, height, {.patch_weight = 0.0f});
-        glFinish();
-        t.push_back(ms_since(t0));
-        progress.advance();
-      }
-      // Standing still while the dimmers turn: every frame a new mix at full detail (refine()).
+      // `frames` frames, each at new levels (every circuit between 0.5 and 1), drawn by `frame(k)`.
+      const auto time_dimming = [&](std::size_t frames, const auto& frame) {
+        std::vector<double> times;
+        for (std::size_t k = 0; k < frames; ++k) {
+          for (std::size_t c = 0; c < levels.size(); ++c) levels[c] = (k + c) % 2 ? 1.0f : 0.5f;
+          renderer.set_dimmers(levels);
+          const auto t0 = Clock::now();
+          frame(k);
+          glFinish();
+          times.push_back(ms_since(t0));
+          progress.advance();
+        }
+        return times;
+      };
+      const std::size_t views = (walk.size() + kLevelViewStride - 1) / kLevelViewStride;
+      const std::vector<double> t = time_dimming(views, [&](std::size_t k) {
+        renderer.draw(walk[k * kLevelViewStride], width, height, {.patch_weight = 0.0f});
+      });
       const render::View resting = walk[walk.size() / 2];
       while (renderer.refine(resting, width, height)) {
       }
-      std::vector<double> t_still;
-      for (std::size_t k = 0; k < t.size(); ++k) {
-        for (std::size_t c = 0; c < levels.size(); ++c) levels[c] = (k + c) % 2 ? 1.0f : 0.5f;
-        renderer.set_dimmers(levels);
-        const auto t0 = Clock::now();
-        renderer.refine(resting, width, height);
-        glFinish();
-        t_still.push_back(ms_since(t0));
-        progress.advance();
-      }
+      const std::vector<double> t_still =
+          time_dimming(views, [&](std::size_t) { (void)renderer.refine(resting, width, height); });
       renderer.set_dimmers(defaults);
       while (renderer.refine(resting, width, height)) {
       }
