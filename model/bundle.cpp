@@ -97,6 +97,66 @@ std::uint32_t BundleContents::add_string(std::string_view s) {
   return offset;
 }
 
+// `what`'s rows: none, or `expected` rows whose starts climb to the entry count, each listing valid circuits
+// in increasing order with finite, non-negative radiosity.
+void Bundle::validate_light_rows(const LightRowsView& rows, std::size_t expected, const char* what) const {
+  const std::string name(what);
+  const auto fail = [&](const std::string& problem) {
+    throw Error(
+        located(path_, 0, "corrupt bundle: " + name + " " + problem, "recompile it with `walk compile`"));
+  };
+  if (rows.first.empty()) {
+    if (!rows.entries.empty()) fail("has entries but no row starts");
+    return;
+  }
+  if (rows.rows() != expected)
+    fail("has " + std::to_string(rows.rows()) + " rows, expected " + std::to_string(expected));
+  if (rows.first.front() != 0 || rows.first.back() != rows.entries.size())
+    fail("row starts do not span its " + std::to_string(rows.entries.size()) + " entries");
+  for (std::size_t r = 0; r < rows.rows(); ++r) {
+    if (rows.first[r + 1] < rows.first[r]) fail("row " + std::to_string(r) + " ends before it starts");
+    std::uint32_t next = 0;
+    for (const LightEntry& e : rows.row(r)) {
+      if (e.circuit < next || e.circuit >= circuits_.size())
+        fail("row " + std::to_string(r) + " names circuit " + std::to_string(e.circuit) +
+             " out of order or out of range");
+      next = e.circuit + 1;
+      for (const float v : e.rgb)
+        if (!std::isfinite(v) || v < 0.0f) fail("holds a negative or non-finite radiosity");
+    }
+  }
+}
+
+// LINT's rows: none, or one per vertex, each naming circuits shown compact in increasing order with a
+// non-zero code.
+void Bundle::validate_compact_codes() const {
+  const auto fail = [&](const std::string& problem) {
+    throw Error(located(path_, 0, "corrupt bundle: LINT " + problem, "recompile it with `walk compile`"));
+  };
+  const CompactCodesView& rows = compact_intensity_;
+  if (rows.first.empty()) {
+    if (!rows.codes.empty()) fail("has codes but no row starts");
+    return;
+  }
+  if (rows.rows() != vertices_.size())
+    fail("has " + std::to_string(rows.rows()) + " rows, expected one per vertex (" +
+         std::to_string(vertices_.size()) + ")");
+  if (rows.first.front() != 0 || rows.first.back() != rows.codes.size())
+    fail("row starts do not span its " + std::to_string(rows.codes.size()) + " codes");
+  for (std::size_t r = 0; r < rows.rows(); ++r) {
+    if (rows.first[r + 1] < rows.first[r]) fail("row " + std::to_string(r) + " ends before it starts");
+    std::uint32_t next = 0;
+    for (const std::uint32_t e : rows.row(r)) {
+      const std::uint32_t c = code_circuit(e);
+      if (c < next || c >= circuits_.size() || code_value(e) == 0 ||
+          circuits_[c].light_form != LightForm::Compact)
+        fail("row " + std::to_string(r) + " holds a code of circuit " + std::to_string(c) +
+             " out of order, out of range, zero, or of a circuit not shown compact");
+      next = c + 1;
+    }
+  }
+}
+
 void Bundle::validate_luminaire_shapes() const {
   const auto fail = [&](const std::string& what) {
     throw Error(located(path_, 0, "corrupt bundle: " + what, "recompile it with `walk compile`"));
@@ -171,10 +231,13 @@ void write_bundle(const std::string& path, const BundleContents& c) {
       pending(section::kLuminaireShapes, c.luminaire_shapes),
       pending(section::kDistributions, c.distributions),
       pending(section::kDistributionValues, c.distribution_values),
-      pending(section::kLight, c.light),
+      pending(section::kLight, c.light.entries),
+      pending(section::kLightRows, c.light.first),
       pending(section::kCompactColour, c.compact_colour),
-      pending(section::kCompactIntensity, c.compact_intensity),
-      pending(section::kPolygonLight, c.polygon_light),
+      pending(section::kCompactIntensity, c.compact_intensity.codes),
+      pending(section::kCompactIntensityRows, c.compact_intensity.first),
+      pending(section::kPolygonLight, c.polygon_light.entries),
+      pending(section::kPolygonLightRows, c.polygon_light.first),
       pending(section::kCoarseIndices, c.coarse_indices),
       pending(section::kCoarseRanges, c.coarse_ranges),
       pending(section::kCells, c.cells),
@@ -326,10 +389,13 @@ void Bundle::validate() {
   get(section::kLuminaireShapes, luminaire_shapes_, false);
   get(section::kDistributions, distributions_, false);
   get(section::kDistributionValues, distribution_values_, false);
-  get(section::kLight, light_, true);
+  get(section::kLight, light_.entries, true);
+  get(section::kLightRows, light_.first, true);
   get(section::kCompactColour, compact_colour_, false);
-  get(section::kCompactIntensity, compact_intensity_, false);
-  get(section::kPolygonLight, polygon_light_, false);
+  get(section::kCompactIntensity, compact_intensity_.codes, false);
+  get(section::kCompactIntensityRows, compact_intensity_.first, false);
+  get(section::kPolygonLight, polygon_light_.entries, false);
+  get(section::kPolygonLightRows, polygon_light_.first, false);
   get(section::kCoarseIndices, coarse_indices_, false);
   get(section::kCoarseRanges, coarse_ranges_, false);
   get(section::kCells, cells_, true);
@@ -356,19 +422,11 @@ void Bundle::validate() {
   if (meta_->circuit_count != circuits_.size()) fail("META circuit count disagrees with CIRC");
   check_string(meta_->compiler_version, "META compiler version");
   if (!std::isfinite(meta_->exposure) || meta_->exposure <= 0.0f) fail("META exposure must be positive");
-  if (light_.size() != vertices_.size() * circuits_.size() * 3)
-    fail("LGHT holds " + std::to_string(light_.size()) + " floats, expected vertices*circuits*3");
-  for (float v : light_)
-    if (!std::isfinite(v) || v < 0.0f) fail("LGHT holds a negative or non-finite radiosity");
+  validate_light_rows(light_, vertices_.size(), "LGHT");
   if (!compact_colour_.empty() && compact_colour_.size() != vertices_.size())
     fail("LCOL must hold one colour per vertex");
-  if (!compact_intensity_.empty() && compact_intensity_.size() != vertices_.size() * circuits_.size())
-    fail("LINT must hold one intensity per vertex per circuit");
   if (compact_colour_.empty() != compact_intensity_.empty()) fail("LCOL and LINT come together");
-  if (!polygon_light_.empty() && polygon_light_.size() != polygons_.size() * circuits_.size() * 3)
-    fail("PLGT must hold polygons*circuits*3 floats");
-  for (float v : polygon_light_)
-    if (!std::isfinite(v) || v < 0.0f) fail("PLGT holds a negative or non-finite radiosity");
+  validate_light_rows(polygon_light_, polygons_.size(), "PLGT");
   for (std::size_t i = 0; i < circuits_.size(); ++i) {
     const auto& c = circuits_[i];
     const std::string name = "CIRC " + std::to_string(i);
@@ -423,6 +481,7 @@ void Bundle::validate() {
     if (l.circuit >= circuits_.size()) fail("LUMS refers to a circuit out of range");
   }
   validate_luminaire_shapes();
+  validate_compact_codes();
   for (const auto& s : stages_) check_string(s.name, "STAG");
   if (cells_.empty()) fail("CELL is empty: a bundle has at least one cell");
   for (std::size_t i = 0; i < cells_.size(); ++i) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "model/bundle_format.hpp"
+#include "model/light_rows.hpp"
 
 namespace walk::model {
 
@@ -26,10 +27,10 @@ struct BundleContents {
   std::vector<LuminaireShapeRecord> luminaire_shapes;  // empty, or one per luminaire
   std::vector<DistributionRecord> distributions;
   std::vector<float> distribution_values;
-  std::vector<float> light;                                 // vertices.size() * circuits.size() * 3
+  LightRows light;                                          // one row per vertex, or none: no light
   std::vector<std::array<std::uint8_t, 4>> compact_colour;  // empty, or one per vertex
-  std::vector<std::uint8_t> compact_intensity;              // empty, or vertices * circuits
-  std::vector<float> polygon_light;                         // empty, or polygons * circuits * 3
+  CompactCodes compact_intensity;                           // empty, or one row per vertex
+  LightRows polygon_light;                                  // empty, or one row per polygon
   std::vector<std::uint32_t> coarse_indices;                // empty, or CIDX
   std::vector<CoarseRangeRecord> coarse_ranges;             // empty, or one per polygon
   std::vector<CellRecord> cells;
@@ -84,12 +85,13 @@ class Bundle {
   [[nodiscard]] std::span<const LuminaireShapeRecord> luminaire_shapes() const { return luminaire_shapes_; }
   [[nodiscard]] std::span<const DistributionRecord> distributions() const { return distributions_; }
   [[nodiscard]] std::span<const float> distribution_values() const { return distribution_values_; }
-  [[nodiscard]] std::span<const float> light() const { return light_; }
+  // Per vertex; empty where no light reaches any vertex (no luminaires).
+  [[nodiscard]] LightRowsView light() const { return light_; }
   [[nodiscard]] std::span<const std::array<std::uint8_t, 4>> compact_colour() const {
     return compact_colour_;
   }
-  [[nodiscard]] std::span<const std::uint8_t> compact_intensity() const { return compact_intensity_; }
-  [[nodiscard]] std::span<const float> polygon_light() const { return polygon_light_; }
+  [[nodiscard]] CompactCodesView compact_intensity() const { return compact_intensity_; }
+  [[nodiscard]] LightRowsView polygon_light() const { return polygon_light_; }
   // Empty when the bundle has no coarse form (draw INDX instead).
   [[nodiscard]] std::span<const std::uint32_t> coarse_indices() const { return coarse_indices_; }
   [[nodiscard]] std::span<const CoarseRangeRecord> coarse_ranges() const { return coarse_ranges_; }
@@ -123,6 +125,8 @@ class Bundle {
   void validate();
   void validate_textures() const;
   void validate_luminaire_shapes() const;
+  void validate_light_rows(const LightRowsView& rows, std::size_t expected, const char* what) const;
+  void validate_compact_codes() const;
 
   std::string path_;
   void* map_ = nullptr;
@@ -138,10 +142,10 @@ class Bundle {
   std::span<const LuminaireShapeRecord> luminaire_shapes_;
   std::span<const DistributionRecord> distributions_;
   std::span<const float> distribution_values_;
-  std::span<const float> light_;
+  LightRowsView light_;
   std::span<const std::array<std::uint8_t, 4>> compact_colour_;
-  std::span<const std::uint8_t> compact_intensity_;
-  std::span<const float> polygon_light_;
+  CompactCodesView compact_intensity_;
+  LightRowsView polygon_light_;
   std::span<const std::uint32_t> coarse_indices_;
   std::span<const CoarseRangeRecord> coarse_ranges_;
   std::span<const CellRecord> cells_;

@@ -8,7 +8,9 @@
 namespace walk::model {
 
 inline constexpr std::array<char, 8> kBundleMagic{'W', 'A', 'L', 'K', 'B', 'N', 'D', 'L'};
-inline constexpr std::uint32_t kBundleVersion = 4;  // 4: CIRC says which light form each circuit is shown in
+// 4: CIRC says which light form each circuit is shown in; 5: LGHT, PLGT and LINT sparse
+// (model/light_rows.hpp)
+inline constexpr std::uint32_t kBundleVersion = 5;
 inline constexpr std::uint64_t kSectionAlignment = 16;
 
 // Tags of the sections, as four ASCII bytes read as a little-endian integer.
@@ -81,8 +83,8 @@ struct GroupRecord {
 };
 
 // How a circuit's light is shown: from the compact form (LCOL x LINT) where that is within the compiler's
-// limit for this circuit, else from LGHT. LGHT always holds every circuit in full (probes and benches read
-// it).
+// limit for this circuit, else from LGHT. LGHT always holds every circuit that reaches a vertex in full
+// (probes and benches read it).
 enum class LightForm : std::uint32_t { Full = 0, Compact = 1 };
 
 struct CircuitRecord {
@@ -246,14 +248,22 @@ inline constexpr std::uint32_t kLuminaires = tag("LUMS");
 inline constexpr std::uint32_t kLuminaireShapes = tag("LMSH");     // optional, see LuminaireShapeRecord
 inline constexpr std::uint32_t kDistributions = tag("DIST");       // optional, see DistributionRecord
 inline constexpr std::uint32_t kDistributionValues = tag("DSTV");  // float
-inline constexpr std::uint32_t kLight = tag("LGHT");  // float RGB per vertex per circuit: [v][c][3]
-// The paper's compact light form, optional: u8 RGBA average colour per vertex, and u8 per vertex per circuit,
-// coded logarithmically against CircuitRecord::compact_scale (model/compact_code.hpp). Radiosity =
-// colour/255 x scale x the code's value.
+// Light per vertex, sparse (model::LightRowsView): LGHT holds LightEntry records, the circuits that reach
+// each vertex in increasing order; LGHR (u32, vertices + 1, or empty: no light anywhere) where each
+// vertex's entries start.
+inline constexpr std::uint32_t kLight = tag("LGHT");
+inline constexpr std::uint32_t kLightRows = tag("LGHR");
+// The paper's compact light form, optional: u8 RGBA average colour per vertex (LCOL), and per vertex the
+// 8-bit intensity code of each circuit shown compact that reaches it (LINT: u32 circuit << 8 | code,
+// model::CompactCodesView; LINR: u32, vertices + 1), coded logarithmically against
+// CircuitRecord::compact_scale (model/compact_code.hpp). Radiosity = colour/255 x scale x the code's value.
 inline constexpr std::uint32_t kCompactColour = tag("LCOL");
 inline constexpr std::uint32_t kCompactIntensity = tag("LINT");
-// Coarse display while moving, optional: float RGB per polygon per circuit, the area mean of its patches.
+inline constexpr std::uint32_t kCompactIntensityRows = tag("LINR");
+// Coarse display while moving, optional: per polygon and circuit the area mean of its patches, sparse as
+// LGHT is (PLGR: u32, polygons + 1).
 inline constexpr std::uint32_t kPolygonLight = tag("PLGT");
+inline constexpr std::uint32_t kPolygonLightRows = tag("PLGR");
 inline constexpr std::uint32_t kCoarseIndices = tag("CIDX");  // u32 vertex indices, see CoarseRangeRecord
 inline constexpr std::uint32_t kCoarseRanges = tag("CRNG");
 inline constexpr std::uint32_t kCells = tag("CELL");

@@ -1,20 +1,20 @@
 #include "render/display_light.hpp"
 
+#include <algorithm>
+
 #include "model/compact_code.hpp"
 
 namespace walk::render {
 
 namespace {
 
-// Appends the circuits of `row` ([circuit][3] floats) in `circuits` whose light is not zero, marking the
-// last; returns the first entry, or kNone when none is lit.
-std::uint32_t append_lit(const float* row, std::span<const std::uint32_t> circuits,
+// Appends the entries of `row` whose circuit `shown` marks, marking the last; returns the first entry, or
+// kNone when none is shown there.
+std::uint32_t append_lit(std::span<const model::LightEntry> row, const std::vector<char>& shown,
                          std::vector<FullLightEntry>& entries) {
   const std::size_t first = entries.size();
-  for (const std::uint32_t c : circuits) {
-    const float* l = &row[std::size_t(c) * 3];
-    if (l[0] != 0.0f || l[1] != 0.0f || l[2] != 0.0f) entries.push_back({{l[0], l[1], l[2]}, float(c)});
-  }
+  for (const model::LightEntry& e : row)
+    if (shown[e.circuit]) entries.push_back({{e.rgb[0], e.rgb[1], e.rgb[2]}, float(e.circuit)});
   if (entries.size() == first) return VertexLightRange::kNone;
   entries.back().circuit += kLastFullEntry;
   return std::uint32_t(first);
@@ -36,18 +36,33 @@ glm::vec3 sum_lit(const std::vector<FullLightEntry>& entries, std::uint32_t firs
 
 // PLGT when the bundle has it; otherwise each polygon's plain mean of its vertices' light, so the coarse
 // level always exists.
-std::vector<float> polygon_light(const model::Bundle& bundle) {
-  const std::size_t circuits = bundle.circuits().size(), n = bundle.polygons().size() * circuits * 3;
-  if (bundle.polygon_light().size() == n)
-    return {bundle.polygon_light().begin(), bundle.polygon_light().end()};
-  std::vector<float> out(n, 0.0f);
+model::LightRows polygon_light(const model::Bundle& bundle) {
+  const auto plgt = bundle.polygon_light();
+  if (plgt.rows() == bundle.polygons().size())
+    return {{plgt.first.begin(), plgt.first.end()}, {plgt.entries.begin(), plgt.entries.end()}};
+  model::LightRows out;
   const auto light = bundle.light();
-  for (std::size_t p = 0; p < bundle.polygons().size(); ++p) {
-    const auto& poly = bundle.polygons()[p];
-    if (poly.vertex_count == 0) continue;
-    for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
-      for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] += light[v * circuits * 3 + k];
-    for (std::size_t k = 0; k < circuits * 3; ++k) out[p * circuits * 3 + k] /= float(poly.vertex_count);
+  std::vector<float> sum(bundle.circuits().size() * 3, 0.0f);
+  std::vector<std::uint32_t> touched;
+  for (const auto& poly : bundle.polygons()) {
+    for (std::uint32_t v = poly.first_vertex; !light.empty() && v < poly.first_vertex + poly.vertex_count;
+         ++v)
+      for (const model::LightEntry& e : light.row(v)) {
+        if (sum[e.circuit * 3] == 0.0f && sum[e.circuit * 3 + 1] == 0.0f && sum[e.circuit * 3 + 2] == 0.0f)
+          touched.push_back(e.circuit);
+        for (int c = 0; c < 3; ++c) sum[e.circuit * 3 + c] += e.rgb[c];
+      }
+    std::sort(touched.begin(), touched.end());
+    for (const std::uint32_t c : touched) {
+      float mean[3];
+      for (int k = 0; k < 3; ++k) {
+        mean[k] = sum[c * 3 + k] / float(poly.vertex_count);
+        sum[c * 3 + k] = 0.0f;
+      }
+      out.add(c, mean);
+    }
+    touched.clear();
+    out.end_row();
   }
   return out;
 }
@@ -56,7 +71,7 @@ std::vector<float> polygon_light(const model::Bundle& bundle) {
 
 DisplayLight::DisplayLight(const model::Bundle& bundle, DisplayLightForm form) : bundle_(bundle) {
   const auto circuits = bundle.circuits();
-  const bool has_compact = !bundle.compact_intensity().empty();
+  const bool has_compact = !bundle.compact_intensity().empty() && !bundle.compact_colour().empty();
   for (std::uint32_t c = 0; c < circuits.size(); ++c) {
     const bool compact = form == DisplayLightForm::AsCompiled && has_compact &&
                          circuits[c].light_form == model::LightForm::Compact;
@@ -65,25 +80,27 @@ DisplayLight::DisplayLight(const model::Bundle& bundle, DisplayLightForm form) :
   const std::size_t n = circuits.size(), vertices = bundle.vertices().size();
   const auto light = bundle.light();
   const auto codes = bundle.compact_intensity();
+  std::vector<char> shown_full(n, 0);
+  for (const std::uint32_t c : full_) shown_full[c] = 1;
   ranges_.resize(vertices);
-  for (std::size_t v = 0; v < vertices; ++v) {
+  for (std::size_t v = 0; v < vertices && !light.empty(); ++v) {
     VertexLightRange& range = ranges_[v];
-    range.full_first = append_lit(&light[v * n * 3], full_, full_entries_);
+    range.full_first = append_lit(light.row(v), shown_full, full_entries_);
     const std::size_t compact_first = compact_entries_.size();
-    for (const std::uint32_t c : compact_)
-      if (const std::uint8_t code = codes[v * n + c]; code != 0) compact_entries_.push_back(c << 8 | code);
+    if (!compact_.empty())
+      for (const std::uint32_t e : codes.row(v))  // LINT holds the circuits shown compact only
+        compact_entries_.push_back(e);
     if (compact_entries_.size() > compact_first) {
       range.compact_first = std::uint32_t(compact_first);
       compact_entries_.back() |= kLastCompactEntry;
     }
   }
   // The coarse level's light has every circuit as floats, compact ones included.
-  std::vector<std::uint32_t> every(n);
-  for (std::uint32_t c = 0; c < n; ++c) every[c] = c;
-  const std::vector<float> dense = polygon_light(bundle);
+  const std::vector<char> every(n, 1);
+  const model::LightRows rows = polygon_light(bundle);
   polygon_first_.resize(bundle.polygons().size());
   for (std::size_t p = 0; p < polygon_first_.size(); ++p)
-    polygon_first_[p] = append_lit(&dense[p * n * 3], every, polygon_entries_);
+    polygon_first_[p] = append_lit(rows.row(p), every, polygon_entries_);
 }
 
 void DisplayLight::shader_levels(std::span<const float> levels, std::vector<float>& out) const {
@@ -121,7 +138,7 @@ std::size_t DisplayLight::gpu_bytes() const {
 }
 
 std::size_t DisplayLight::full_form_bytes() const {
-  return bundle_.light().size_bytes();
+  return bundle_.light().first.size_bytes() + bundle_.light().entries.size_bytes();
 }
 
 }  // namespace walk::render

@@ -49,8 +49,7 @@ Run cornell_run(const compiler::CornellBox& box, double grid, double rays_per_wa
           set.patches.size(),
           result.stats.rays,
           result.stats.seconds};
-  for (std::size_t v = 0; v < set.vertices.size(); ++v)
-    run.mesh.value.push_back((light[v * 3] + light[v * 3 + 1] + light[v * 3 + 2]) / 3.0);
+  for (std::size_t v = 0; v < set.vertices.size(); ++v) run.mesh.value.push_back(light.scalar(v));
   for (const auto& p : set.patches) {
     if (box.surfaces[p.polygon].material == "emitter") continue;  // probes only on lit surfaces
     auto& tris = run.mesh.polygon_triangles[p.polygon];
@@ -73,12 +72,13 @@ Run scene_run(const compiler::SceneConfig& base, double grid, double rays_per_wa
       run.rays = s.items_out;
       run.patches = s.items_in;
     }
-  const std::size_t K = b.circuits.size() * 3;
   for (std::size_t v = 0; v < b.vertices.size(); ++v) {
     const auto& p = b.vertices[v].position;
     run.mesh.vertices.emplace_back(p[0], p[1], p[2]);
     double sum = 0.0;
-    for (std::size_t k = 0; k < K; ++k) sum += b.light[v * K + k];
+    if (!b.light.empty())
+      for (const model::LightEntry& e : b.light.row(v))
+        for (const float x : e.rgb) sum += x;
     run.mesh.value.push_back(sum / 3.0);
   }
   for (const auto& poly : b.polygons) {

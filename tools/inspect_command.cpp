@@ -1,6 +1,8 @@
 // walk inspect x.walk: what a bundle holds, after full validation.
+#include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <vector>
 
 #include "model/bundle.hpp"
 #include "model/model.hpp"
@@ -63,10 +65,13 @@ int inspect(const std::string& path, bool list) {
                 static_cast<unsigned long long>(s.items_in), static_cast<unsigned long long>(s.items_out));
   if (list) {
     std::printf("circuits:\n");
+    std::vector<double> peaks(b->circuits().size(), 0.0);  // green channel, per circuit
+    const auto light = b->light();
+    for (std::size_t v = 0; v < light.rows(); ++v)
+      for (const model::LightEntry& e : light.row(v))
+        peaks[e.circuit] = std::max<double>(peaks[e.circuit], e.rgb[1]);
     for (std::size_t c = 0; c < b->circuits().size(); ++c) {
-      double peak = 0.0;
-      for (std::size_t v = 0; v < b->vertices().size(); ++v)
-        peak = std::max<double>(peak, b->light()[(v * b->circuits().size() + c) * 3 + 1]);
+      const double peak = peaks[c];
       const auto& r = b->circuits()[c];
       std::printf("  %2zu %-24s default %.2f  peak B %.2f W/m2  shown %s (compact error %.2f%%)\n", c,
                   std::string(b->string(r.name)).c_str(), r.default_level, peak,

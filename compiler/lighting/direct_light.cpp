@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
 #include "common/parallel_for.hpp"
 #include "compiler/photometry/emission.hpp"
@@ -54,7 +55,7 @@ double intensity_per_watt(const model::Luminaire& l, const model::Vec3& w) {
 }
 
 void add_point_light(const SurfaceSample& p, const model::Vec3& origin, const model::Luminaire& l,
-                     const TriangleBvh& occluders, std::size_t circuit_count, float* out, std::uint64_t& rays,
+                     const TriangleBvh& occluders, SparseLight& out, std::size_t row, std::uint64_t& rays,
                      std::uint64_t& blocked) {
   const model::Vec3 d = l.position - origin;
   const double r2 = std::max(glm::dot(d, d), kMinDistanceSquared);
@@ -68,17 +69,20 @@ void add_point_light(const SurfaceSample& p, const model::Vec3& origin, const mo
     ++blocked;
     return;
   }
-  float* b = out + l.circuit * 3;
-  for (int c = 0; c < 3; ++c) b[c] += static_cast<float>(p.albedo[c] * l.power[c] * intensity * cos_r / r2);
+  double* b = out.at(row, l.circuit);
+  for (int c = 0; c < 3; ++c) b[c] += p.albedo[c] * l.power[c] * intensity * cos_r / r2;
 }
 
 }  // namespace
 
-std::vector<float> direct_light(std::span<const SurfaceSample> samples,
-                                const std::vector<model::Luminaire>& luminaires, std::size_t circuit_count,
-                                const TriangleBvh& occluders, const DirectLightOptions& options,
-                                DirectLightStats* stats) {
-  std::vector<float> out(samples.size() * circuit_count * 3, 0.0f);
+SparseLight direct_light(std::span<const SurfaceSample> samples,
+                         const std::vector<model::Luminaire>& luminaires, std::size_t circuit_count,
+                         const TriangleBvh& occluders, const DirectLightOptions& options,
+                         DirectLightStats* stats) {
+  for (const auto& l : luminaires)
+    if (l.circuit >= circuit_count)
+      throw std::invalid_argument("direct_light: luminaire circuit out of range");
+  SparseLight out(samples.size());
   std::atomic<std::uint64_t> rays{0}, blocked{0};
   constexpr std::size_t kChunk = 256;
   parallel_ranges(samples.size(), kChunk, options.threads, [&](std::size_t begin, std::size_t end) {
@@ -91,8 +95,7 @@ std::vector<float> direct_light(std::span<const SurfaceSample> samples,
         const model::Vec3 origin = p.position + p.normal * kShadowOffset;
         for (const auto& l : luminaires) {
           if (l.kind != model::LuminaireKind::Area) {
-            add_point_light(p, origin, l, occluders, circuit_count, &out[s * circuit_count * 3], my_rays,
-                            my_blocked);
+            add_point_light(p, origin, l, occluders, out, s, my_rays, my_blocked);
             continue;
           }
           const model::Vec3 ln = glm::normalize(l.normal);
@@ -115,9 +118,9 @@ std::vector<float> direct_light(std::span<const SurfaceSample> samples,
           }
           // Lambertian panel: radiance Phi/(pi A); each point stands for A/n of its area.
           const double irradiance_per_watt = sum / (std::numbers::pi * points.size());
-          float* b = &out[(s * circuit_count + l.circuit) * 3];
-          for (int c = 0; c < 3; ++c)
-            b[c] += static_cast<float>(p.albedo[c] * l.power[c] * irradiance_per_watt);
+          if (irradiance_per_watt <= 0.0) continue;  // every point shadowed or turned away: no entry
+          double* b = out.at(s, l.circuit);
+          for (int c = 0; c < 3; ++c) b[c] += p.albedo[c] * l.power[c] * irradiance_per_watt;
         }
       }
     }

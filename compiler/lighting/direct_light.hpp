@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "compiler/radiosity/sparse_light.hpp"
 #include "compiler/raycast/triangle_bvh.hpp"
 #include "model/model.hpp"
 
@@ -27,11 +28,10 @@ struct DirectLightStats {
   std::uint64_t occluded = 0;
 };
 
-// Returns radiosity B (W/m2) per sample per circuit per channel: [sample][circuit][3].
-[[nodiscard]] std::vector<float> direct_light(std::span<const SurfaceSample> samples,
-                                              const std::vector<model::Luminaire>& luminaires,
-                                              std::size_t circuit_count, const TriangleBvh& occluders,
-                                              const DirectLightOptions& options,
-                                              DirectLightStats* stats = nullptr);
+// Returns radiosity B (W/m2) per sample (a row each) and circuit.
+[[nodiscard]] SparseLight direct_light(std::span<const SurfaceSample> samples,
+                                       const std::vector<model::Luminaire>& luminaires,
+                                       std::size_t circuit_count, const TriangleBvh& occluders,
+                                       const DirectLightOptions& options, DirectLightStats* stats = nullptr);
 
 }  // namespace walk::compiler

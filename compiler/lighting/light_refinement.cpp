@@ -22,15 +22,14 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
 std::vector<double> irradiance(const std::vector<SurfaceSample>& points,
                                const std::vector<model::Luminaire>& luminaires, std::size_t circuits,
                                const TriangleBvh& occluders, const LightRefinementOptions& o,
-                               double& shadow_rays, std::vector<float>& light) {
+                               double& shadow_rays, SparseLight& light) {
   DirectLightStats stats;
   light = direct_light(points, luminaires, circuits, occluders, {o.samples_per_luminaire, o.threads}, &stats);
   shadow_rays += double(stats.shadow_rays);
   std::vector<double> out(points.size(), 0.0);
   for (std::size_t i = 0; i < points.size(); ++i)
-    for (std::size_t c = 0; c < circuits; ++c)
-      out[i] += model::luminance_weight({light[(i * circuits + c) * 3], light[(i * circuits + c) * 3 + 1],
-                                         light[(i * circuits + c) * 3 + 2]});
+    for (const CircuitLight& e : light.row(i))
+      out[i] += model::luminance_weight({e.rgb[0], e.rgb[1], e.rgb[2]});
   return out;
 }
 
@@ -74,20 +73,18 @@ void split_triangle(PolygonMesh& mesh, std::size_t t, const std::array<std::uint
 LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, const std::vector<bool>& lit,
                                             const std::vector<model::Luminaire>& luminaires,
                                             const TriangleBvh& occluders, const LightRefinementOptions& o,
-                                            std::vector<std::vector<float>>* direct) {
+                                            std::vector<SparseLight>* direct) {
   LightRefinementStats stats;
   if (direct) direct->assign(meshes.size(), {});
   if (luminaires.empty() || o.tolerance <= 0.0) return stats;
   std::size_t circuits = 1;
   for (const auto& l : luminaires) circuits = std::max<std::size_t>(circuits, l.circuit + 1);
   stats.circuits = circuits;
-  const std::size_t stride = circuits * 3;
   // Appends the gathered light of points [first, first + count) to mesh m's.
-  std::vector<float> light;
+  SparseLight light;
   auto keep = [&](std::size_t m, std::size_t first, std::size_t count) {
     if (direct)
-      (*direct)[m].insert((*direct)[m].end(), light.begin() + std::ptrdiff_t(first * stride),
-                          light.begin() + std::ptrdiff_t((first + count) * stride));
+      for (std::size_t i = first; i < first + count; ++i) (*direct)[m].append_row(light.row(i));
   };
 
   // Direct light at every vertex of every lit mesh, and its RMS: the scale the tolerance is relative to.

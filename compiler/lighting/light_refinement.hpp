@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "compiler/geometry/mesher.hpp"
+#include "compiler/radiosity/sparse_light.hpp"
 #include "compiler/raycast/triangle_bvh.hpp"
 #include "model/model.hpp"
 
@@ -41,6 +42,6 @@ LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, co
                                             const std::vector<model::Luminaire>& luminaires,
                                             const TriangleBvh& occluders,
                                             const LightRefinementOptions& options,
-                                            std::vector<std::vector<float>>* direct = nullptr);
+                                            std::vector<SparseLight>* direct = nullptr);
 
 }  // namespace walk::compiler

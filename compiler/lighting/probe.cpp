@@ -59,9 +59,8 @@ ProbeResult Probe::read(const ProbeOptions& o) const {
   const SurfaceSample meter{at, n, model::Rgb(1.0)};
   const auto direct =
       direct_light({&meter, 1}, impl_->luminaires, circuits, bvh, {o.panel_samples, o.threads});
-  for (std::size_t c = 0; c < circuits; ++c)
-    r.circuits[c].direct_lux =
-        model::lux_from_irradiance({direct[c * 3], direct[c * 3 + 1], direct[c * 3 + 2]});
+  for (const CircuitLight& e : direct.row(0))
+    r.circuits[e.circuit].direct_lux = model::lux_from_irradiance({e.rgb[0], e.rgb[1], e.rgb[2]});
 
   // Indirect: E = mean radiosity met by cosine-distributed rays (pdf cos / pi cancels the cosine and pi).
   const int rays = std::max(1, o.indirect_rays);

@@ -40,10 +40,11 @@ bool StoredLight::along_ray(const model::Vec3& origin, const model::Vec3& dir, s
   }
   if (distance) *distance = hit->t * std::sqrt(glm::dot(dir, dir));
   const auto w = triangle_weights(t.a, t.b, t.c, origin + dir * hit->t);
-  const std::size_t k = bundle_.circuits().size() * 3;
-  out.assign(k, 0.0);
-  for (int i = 0; i < 3; ++i)
-    for (std::size_t j = 0; j < k; ++j) out[j] += w[i] * bundle_.light()[c[i] * k + j];
+  out.assign(bundle_.circuits().size() * 3, 0.0);
+  const auto light = bundle_.light();
+  for (int i = 0; i < 3 && !light.empty(); ++i)
+    for (const model::LightEntry& e : light.row(c[i]))
+      for (int j = 0; j < 3; ++j) out[e.circuit * 3 + j] += w[i] * e.rgb[j];
   return true;
 }
 

@@ -38,23 +38,16 @@ struct Shot {
   std::uint32_t patch = 0;  // source patch, or point emitter index when `point`
   bool point = false;
   std::uint32_t rays = 0;
-  std::uint64_t first_ray = 0;        // index of its first ray in the round
-  std::vector<double> power_per_ray;  // K = circuits * 3
-  // The k with power: a patch holds the light of the few circuits that reach its room, so a hit touches
-  // those alone instead of every circuit's three channels.
-  std::vector<std::uint32_t> lit;
+  std::uint64_t first_ray = 0;  // index of its first ray in the round
+  // Power per ray of the circuits with power: a patch holds the light of the few circuits that reach its
+  // room, so a hit touches those alone.
+  std::vector<CircuitLight> power_per_ray;
 };
 
-// Fills `s.lit` with the channels of `s.power_per_ray` that carry power.
-void index_lit_channels(Shot& s) {
-  s.lit.clear();
-  for (std::uint32_t k = 0; k < s.power_per_ray.size(); ++k)
-    if (s.power_per_ray[k] != 0.0) s.lit.push_back(k);
-}
-
-double scalar_power(const double* v, std::size_t k) {
+double scalar_power(std::span<const CircuitLight> light) {
   double s = 0.0;
-  for (std::size_t i = 0; i < k; ++i) s += v[i];
+  for (const CircuitLight& e : light)
+    for (const double v : e.rgb) s += v;
   return s / 3.0;
 }
 
@@ -92,13 +85,12 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
                                 std::span<const PointEmitter> points, std::size_t circuits,
                                 const RadiosityOptions& options, const RoundObserver& observer) {
   const auto start = std::chrono::steady_clock::now();
-  const std::size_t K = circuits * 3;
   const std::size_t P = set.patches.size();
   RadiosityResult result;
   result.circuits = circuits;
-  result.radiosity.assign(P * K, 0.0);
+  result.radiosity = SparseLight(P);
   auto& stats = result.stats;
-  if (K == 0 || P == 0) return result;
+  if (circuits == 0 || P == 0) return result;
 
   std::vector<Triangle> triangles;
   triangles.reserve(P);
@@ -108,31 +100,36 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   }
   const auto caster = make_ray_caster(options.caster, triangles);
 
-  std::vector<double> unshot(P * K, 0.0);
+  SparseLight unshot(P);
   std::vector<std::uint64_t> patch_hits(P, 0);
   std::vector<double> emitted_exitance(P, 0.0);  // scalar
-  const bool gathered = !options.gathered_direct.empty();
-  if (gathered && options.gathered_direct.size() != P * K)
-    throw std::invalid_argument(
-        "solve_radiosity: gathered direct light is not one value per patch and channel");
+  const SparseLight* gathered = options.gathered_direct;
+  if (gathered && gathered->rows() != P)
+    throw std::invalid_argument("solve_radiosity: gathered direct light is not one row per patch");
   for (const auto& e : area) {
+    if (e.circuit >= circuits) throw std::invalid_argument("solve_radiosity: emitter circuit out of range");
     emitted_exitance[e.patch] += (e.exitance.r + e.exitance.g + e.exitance.b) / 3.0;
     const auto& p = set.patches[e.patch];
+    double* b = result.radiosity.at(e.patch, e.circuit);
+    double* u = gathered ? nullptr : unshot.at(e.patch, e.circuit);
     for (int c = 0; c < 3; ++c) {
-      result.radiosity[e.patch * K + e.circuit * 3 + c] += e.exitance[c];
+      b[c] += e.exitance[c];
       if (gathered) continue;  // its direct light is already on the receivers
-      unshot[e.patch * K + e.circuit * 3 + c] += e.exitance[c] * p.area;
+      u[c] += e.exitance[c] * p.area;
       stats.emitted += e.exitance[c] * p.area / 3.0;
     }
   }
   if (gathered) {
     for (std::size_t i = 0; i < P; ++i) {
       const double a = set.patches[i].area;
-      for (std::size_t k = 0; k < K; ++k) {
-        const double b = options.gathered_direct[i * K + k];
-        result.radiosity[i * K + k] += b;
-        unshot[i * K + k] += b * a;
-        stats.emitted += b * a / 3.0;
+      for (const CircuitLight& g : gathered->row(i)) {
+        double* b = result.radiosity.at(i, g.circuit);
+        double* u = unshot.at(i, g.circuit);
+        for (int c = 0; c < 3; ++c) {
+          b[c] += g.rgb[c];
+          u[c] += g.rgb[c] * a;
+          stats.emitted += g.rgb[c] * a / 3.0;
+        }
       }
     }
   } else {
@@ -144,7 +141,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   // Each patch's unshot power as a scalar (scalar_power of its row), kept as light arrives and leaves so a
   // round does not rescan every patch's circuits.
   std::vector<double> patch_scalar(P);
-  for (std::size_t i = 0; i < P; ++i) patch_scalar[i] = scalar_power(&unshot[i * K], K);
+  for (std::size_t i = 0; i < P; ++i) patch_scalar[i] = scalar_power(unshot.row(i));
   const unsigned threads = std::max(1u, options.threads);
 
   auto cast_round = [&](std::uint64_t round) {
@@ -200,7 +197,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   };
 
   auto deposit = [&](const Shot& s) {
-    const double ray_power = scalar_power(s.power_per_ray.data(), K);
+    const double ray_power = scalar_power(s.power_per_ray);
     for (std::uint32_t r = 0; r < s.rays; ++r) {
       const std::int32_t h = hits[s.first_ray + r];
       if (h < 0) {
@@ -209,16 +206,18 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
       }
       const Patch& p = set.patches[static_cast<std::size_t>(h)];
       ++patch_hits[static_cast<std::size_t>(h)];
-      double* b = &result.radiosity[std::size_t(h) * K];
-      double* u = &unshot[std::size_t(h) * K];
       double gained = 0.0;
-      for (const std::uint32_t k : s.lit) {
-        const double in = s.power_per_ray[k];
-        const double reflected = in * p.reflectance[k % 3];
-        b[k] += reflected / p.area;
-        u[k] += reflected;
-        gained += reflected;
-        stats.absorbed += (in - reflected) / 3.0;
+      for (const CircuitLight& e : s.power_per_ray) {
+        double* b = result.radiosity.at(std::size_t(h), e.circuit);
+        double* u = unshot.at(std::size_t(h), e.circuit);
+        for (int c = 0; c < 3; ++c) {
+          const double in = e.rgb[c];
+          const double reflected = in * p.reflectance[c];
+          b[c] += reflected / p.area;
+          u[c] += reflected;
+          gained += reflected;
+          stats.absorbed += (in - reflected) / 3.0;
+        }
       }
       patch_scalar[std::size_t(h)] += gained / 3.0;
     }
@@ -234,9 +233,8 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
       s.patch = i;
       s.point = true;
       s.rays = static_cast<std::uint32_t>(std::max(1.0, std::round(power * options.rays_per_watt)));
-      s.power_per_ray.assign(K, 0.0);
-      for (int c = 0; c < 3; ++c) s.power_per_ray[e.circuit * 3 + c] = e.power[c] / s.rays;
-      index_lit_channels(s);
+      if (e.circuit >= circuits) throw std::invalid_argument("solve_radiosity: emitter circuit out of range");
+      s.power_per_ray.push_back({e.circuit, {e.power.r / s.rays, e.power.g / s.rays, e.power.b / s.rays}});
       shots.push_back(std::move(s));
     }
     cast_round(0);
@@ -269,13 +267,10 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
       s.patch = i;
       s.rays = static_cast<std::uint32_t>(
           std::clamp(std::round(patch_scalar[i] * options.rays_per_watt), 1.0, 4.0e9));
-      s.power_per_ray.resize(K);
-      for (std::size_t k = 0; k < K; ++k) {
-        s.power_per_ray[k] = unshot[i * K + k] / s.rays;
-        unshot[i * K + k] = 0.0;
-      }
+      for (const CircuitLight& u : unshot.row(i))
+        s.power_per_ray.push_back({u.circuit, {u.rgb[0] / s.rays, u.rgb[1] / s.rays, u.rgb[2] / s.rays}});
+      unshot.clear_row(i);
       patch_scalar[i] = 0.0;
-      index_lit_channels(s);
       shots.push_back(std::move(s));
     }
     stats.shots += shots.size();
@@ -290,9 +285,8 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
     const double a = set.patches[i].area;
     // Scalar radiosity (the mean over channels of the sum over circuits, as scalar_power sums power) less
     // the emitters' own exitance: a panel's glow is exact and would swamp the light on the surfaces.
-    const double reflected = std::max(0.0, scalar_power(&result.radiosity[i * K], K) - emitted_exitance[i]);
-    const double shot =
-        gathered ? std::max(0.0, reflected - scalar_power(&options.gathered_direct[i * K], K)) : reflected;
+    const double reflected = std::max(0.0, scalar_power(result.radiosity.row(i)) - emitted_exitance[i]);
+    const double shot = gathered ? std::max(0.0, reflected - scalar_power(gathered->row(i))) : reflected;
     square += a * reflected * reflected;
     if (patch_hits[i] > 0) variance += a * shot * shot / double(patch_hits[i]);
   }

@@ -17,6 +17,7 @@
 
 #include "compiler/photometry/emission.hpp"
 #include "compiler/radiosity/patch_set.hpp"
+#include "compiler/radiosity/sparse_light.hpp"
 
 namespace walk::compiler {
 
@@ -48,11 +49,11 @@ struct RadiosityOptions {
   std::uint64_t seed = 1;
   std::uint64_t max_rays = 2'000'000'000;  // safety stop
   std::string caster = "axial";            // ray caster by name (compiler/raycast/ray_caster.hpp)
-  // Direct light already gathered at the receivers, as the radiosity it gives each patch ([patch][circuit]
-  // [channel], W/m2, reflectance applied): when set, luminaires shoot nothing and only this reflected light
-  // and what it reflects in turn is shot (Wallace, Elmquist & Haines 1989), so shooting noise is in the
-  // indirect light alone. The result's radiosity includes it; `emitted` then counts the power it injects.
-  std::span<const double> gathered_direct;
+  // Direct light already gathered at the receivers, as the radiosity it gives each patch (a row per patch,
+  // W/m2, reflectance applied): when set, luminaires shoot nothing and only this reflected light and what it
+  // reflects in turn is shot (Wallace, Elmquist & Haines 1989), so shooting noise is in the indirect light
+  // alone. The result's radiosity includes it; `emitted` then counts the power it injects.
+  const SparseLight* gathered_direct = nullptr;
 };
 
 struct RadiosityStats {
@@ -77,7 +78,9 @@ struct RadiosityStats {
 
 struct RadiosityResult {
   std::size_t circuits = 0;
-  std::vector<double> radiosity;  // W/m2, [patch][circuit][channel]
+  // W/m2, a row per patch: the circuits whose light reaches it (a patch in one room of a building holds
+  // a few of its circuits, so this grows with the building, not with patches x circuits).
+  SparseLight radiosity;
   RadiosityStats stats;
 };
 

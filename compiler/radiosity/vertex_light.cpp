@@ -1,42 +1,48 @@
 #include "compiler/radiosity/vertex_light.hpp"
 
 namespace walk::compiler {
+namespace {
 
-std::vector<float> vertex_radiosity(const PatchSet& patches, const RadiosityResult& result) {
-  const std::size_t K = result.circuits * 3;
-  std::vector<double> sum(patches.vertices.size() * K, 0.0);
+// Row r of `sums` divided by `area[r]` (rows of no area left empty).
+void divide_rows(SparseLight& sums, const std::vector<double>& area) {
+  for (std::size_t r = 0; r < sums.rows(); ++r) {
+    if (area[r] <= 0.0) {
+      sums.clear_row(r);
+      continue;
+    }
+    for (CircuitLight& e : sums.row(r))
+      for (double& v : e.rgb) v /= area[r];
+  }
+}
+
+}  // namespace
+
+SparseLight vertex_radiosity(const PatchSet& patches, const RadiosityResult& result) {
+  SparseLight sum(patches.vertices.size());
   std::vector<double> area(patches.vertices.size(), 0.0);
   for (std::size_t p = 0; p < patches.patches.size(); ++p) {
     const Patch& patch = patches.patches[p];
     for (std::uint32_t v : patch.v) {
       area[v] += patch.area;
-      for (std::size_t k = 0; k < K; ++k) sum[v * K + k] += patch.area * result.radiosity[p * K + k];
+      sum.add(v, result.radiosity.row(p), patch.area);
     }
   }
-  std::vector<float> out(sum.size(), 0.0f);
-  for (std::size_t v = 0; v < area.size(); ++v)
-    if (area[v] > 0.0)
-      for (std::size_t k = 0; k < K; ++k) out[v * K + k] = static_cast<float>(sum[v * K + k] / area[v]);
-  return out;
+  divide_rows(sum, area);
+  return sum;
 }
 
-std::vector<float> polygon_radiosity(const PatchSet& patches, const RadiosityResult& result,
-                                     std::size_t polygon_count) {
-  const std::size_t K = result.circuits * 3;
-  std::vector<double> sum(polygon_count * K, 0.0);
+model::LightRows polygon_radiosity(const PatchSet& patches, const RadiosityResult& result,
+                                   std::size_t polygon_count) {
+  SparseLight sum(polygon_count);
   std::vector<double> area(polygon_count, 0.0);
   for (std::size_t p = 0; p < patches.patches.size(); ++p) {
     const Patch& patch = patches.patches[p];
     if (patch.polygon >= polygon_count) continue;
     area[patch.polygon] += patch.area;
-    for (std::size_t k = 0; k < K; ++k)
-      sum[patch.polygon * K + k] += patch.area * result.radiosity[p * K + k];
+    sum.add(patch.polygon, result.radiosity.row(p), patch.area);
   }
-  std::vector<float> out(sum.size(), 0.0f);
-  for (std::size_t i = 0; i < polygon_count; ++i)
-    if (area[i] > 0.0)
-      for (std::size_t k = 0; k < K; ++k) out[i * K + k] = static_cast<float>(sum[i * K + k] / area[i]);
-  return out;
+  divide_rows(sum, area);
+  return sum.to_rows();
 }
 
 }  // namespace walk::compiler

@@ -22,7 +22,7 @@ class CompactStage final : public Stage {
       const auto& p = out.polygons[polygon];
       std::fill_n(glowing.begin() + p.first_vertex, p.vertex_count, std::uint8_t(1));
     }
-    s.compact = choose_light_forms(out.light, out.vertices.size(), circuits, glowing);
+    s.compact = choose_light_forms(out.light.view(), out.vertices.size(), circuits, glowing);
     out.compact_colour = s.compact.colour;
     out.compact_intensity = s.compact.intensity;
     // Which circuits are shown full, and why: each one's error in the compact form.
@@ -36,9 +36,15 @@ class CompactStage final : public Stage {
       if (!full.empty()) full += ", ";
       full += fmt::format("{} {:.1f}%", s.model.circuits[c].name, 100.0 * s.compact.circuit_rms[c]);
     }
+    // In: the full form's bytes (LGHT, LGHR); out: what the display keeps (LCOL, LINT, LINR, and LGHT's
+    // entries of the circuits shown full).
+    std::size_t full_entries = 0;
+    for (const auto& e : out.light.entries) full_entries += s.compact.compact[e.circuit] ? 0 : 1;
     return StageOutcome::ran(
-        out.light.size() * sizeof(float),
-        out.vertices.size() * (4 + compact + (circuits - compact) * 3 * sizeof(float)),
+        out.light.entries.size() * sizeof(model::LightEntry) + out.light.first.size() * 4,
+        out.vertices.size() * 4 +
+            (out.compact_intensity.codes.size() + out.compact_intensity.first.size()) * 4 +
+            full_entries * sizeof(model::LightEntry),
         fmt::format(
             "{} of {} circuits compact (worst {:.2f}% RMS, limit {:.0f}%), shown error all on {:.2f}% "
             "RMS{}",

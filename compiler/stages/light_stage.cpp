@@ -78,15 +78,17 @@ class LightStage final : public Stage {
 
   StageOutcome run(CompileState& s, std::uint64_t input_hash) override {
     auto& out = s.out;
-    const std::size_t circuits = s.model.circuits.size();
-    out.light.assign(out.vertices.size() * circuits * 3, 0.0f);
+    out.light = {};
+    out.polygon_light = {};
     if (s.model.luminaires.empty())
       return StageOutcome::skipped("no luminaires: display shows ambient light only");
     const model::StageRecord* before = previous_record(s, "light");
     if (before && before->input_hash == input_hash && before->ran != 0 &&
-        s.previous->light().size() == out.light.size()) {
-      out.light.assign(s.previous->light().begin(), s.previous->light().end());
-      out.polygon_light.assign(s.previous->polygon_light().begin(), s.previous->polygon_light().end());
+        s.previous->light().rows() == out.vertices.size()) {
+      const auto light = s.previous->light(), polygon_light = s.previous->polygon_light();
+      out.light = {{light.first.begin(), light.first.end()}, {light.entries.begin(), light.entries.end()}};
+      out.polygon_light = {{polygon_light.first.begin(), polygon_light.first.end()},
+                           {polygon_light.entries.begin(), polygon_light.entries.end()}};
       return StageOutcome::reused("surfaces, materials, luminaires and lighting knobs unchanged since " +
                                   s.previous->path());
     }
@@ -126,20 +128,20 @@ class LightStage final : public Stage {
     // corners' mean) as the light the solver shoots on. Otherwise at each patch's centroid, shown like shot
     // light (the area mean of the patches around a vertex): a vertex where a wall meets the floor, or
     // just above a lamp's plane, is dark, and interpolating from it would darken the light around it.
-    std::vector<double> vertex_direct, patch_direct;
+    SparseLight vertex_direct, patch_direct;
     DirectLightStats direct_stats;
     std::string direct_note;
     if (s.config.lighting.gather_direct && s.patches_coarser_than_display) {
       std::size_t from_refinement = 0;
       vertex_direct = gather_vertex_direct(s, &direct_stats, from_refinement);
-      patch_direct = patch_means(s.patches, vertex_direct, circuits * 3);
-      ro.gathered_direct = patch_direct;
+      patch_direct = patch_means(s.patches, vertex_direct);
+      ro.gathered_direct = &patch_direct;
       direct_note =
           fmt::format("direct gathered at vertices ({} from the light refinement, {} shadow rays), ",
                       from_refinement, direct_stats.shadow_rays);
     } else if (s.config.lighting.gather_direct) {
       patch_direct = gather_patch_direct(s, &direct_stats);
-      ro.gathered_direct = patch_direct;
+      ro.gathered_direct = &patch_direct;
       direct_note = fmt::format("direct gathered ({} shadow rays), ", direct_stats.shadow_rays);
     }
     RadiosityResult r =
@@ -149,16 +151,17 @@ class LightStage final : public Stage {
     out.polygon_light = polygon_radiosity(s.patches, r, out.polygons.size());
     if (!vertex_direct.empty()) {
       // The display: the direct light as gathered at its vertex plus the patches' shot light around it.
-      for (std::size_t i = 0; i < patch_direct.size(); ++i) r.radiosity[i] -= patch_direct[i];
-      out.light = vertex_radiosity(s.patches, r);
+      for (std::size_t i = 0; i < patch_direct.rows(); ++i) r.radiosity.add(i, patch_direct.row(i), -1.0);
+      SparseLight light = vertex_radiosity(s.patches, r);
       if (s.patches_coarser_than_display) {
-        const std::size_t lost = spread_to_refined_vertices(s, out.light, circuits * 3);
+        const std::size_t lost = spread_to_refined_vertices(s, light);
         direct_note +=
             fmt::format("shot light spread to refined vertices ({} off patches: nearest corner), ", lost);
       }
-      for (std::size_t i = 0; i < out.light.size(); ++i) out.light[i] += static_cast<float>(vertex_direct[i]);
+      for (std::size_t i = 0; i < vertex_direct.rows(); ++i) light.add(i, vertex_direct.row(i));
+      out.light = light.to_rows();
     } else {
-      out.light = vertex_radiosity(s.patches, r);
+      out.light = vertex_radiosity(s.patches, r).to_rows();
     }
     const auto& st = r.stats;
     auto outcome = StageOutcome::ran(
@@ -174,24 +177,22 @@ class LightStage final : public Stage {
   }
 
   // Direct light gathered at `samples` against the scene's shadow occluders (consumed: a compile gathers
-  // once), written at index[i] of a [count][circuit][3] array; what no sample lands on stays 0.
-  static std::vector<double> gather_direct(CompileState& s, std::span<const SurfaceSample> samples,
-                                           std::span<const std::uint32_t> index, std::size_t count,
-                                           DirectLightStats* stats) {
-    const std::size_t k = s.model.circuits.size() * 3;
+  // once), written at row index[i] of `count` rows; rows no sample lands on stay empty.
+  static SparseLight gather_direct(CompileState& s, std::span<const SurfaceSample> samples,
+                                   std::span<const std::uint32_t> index, std::size_t count,
+                                   DirectLightStats* stats) {
     const TriangleBvh bvh(std::move(s.occluders));
     const auto light = direct_light(samples, s.model.luminaires, s.model.circuits.size(), bvh,
                                     {s.config.lighting.samples_per_luminaire, s.options.threads}, stats);
-    std::vector<double> out(count * k, 0.0);
-    for (std::size_t i = 0; i < samples.size(); ++i) std::copy_n(&light[i * k], k, &out[index[i] * k]);
+    SparseLight out(count);
+    for (std::size_t i = 0; i < samples.size(); ++i) out.set_row(index[i], light.row(i));
     return out;
   }
 
   // Direct light at every lit vertex (panels glow, so theirs stay 0), [vertex][circuit][channel]: the light
   // refinement's where it gathered it (the values its edges were tested with), gathered here for the rest.
   // `refined`: how many vertices took the refinement's.
-  static std::vector<double> gather_vertex_direct(CompileState& s, DirectLightStats* stats,
-                                                  std::size_t& refined) {
+  static SparseLight gather_vertex_direct(CompileState& s, DirectLightStats* stats, std::size_t& refined) {
     refined = 0;
     if (s.sample_refined.empty())
       return gather_direct(s, s.samples, s.sample_vertex, s.out.vertices.size(), stats);
@@ -203,12 +204,12 @@ class LightStage final : public Stage {
         rest_vertex.push_back(s.sample_vertex[i]);
       }
     auto out = gather_direct(s, rest, rest_vertex, s.out.vertices.size(), stats);
-    const std::size_t k = s.model.circuits.size() * 3;
     for (std::size_t i = 0; i < s.samples.size(); ++i) {
       if (!s.sample_refined[i]) continue;
       ++refined;
-      for (std::size_t j = 0; j < k; ++j)
-        out[s.sample_vertex[i] * k + j] = s.sample_direct[i * k + j] * s.samples[i].albedo[int(j % 3)];
+      out.set_row(s.sample_vertex[i], s.sample_direct.row(i));
+      for (CircuitLight& e : out.row(s.sample_vertex[i]))
+        for (int c = 0; c < 3; ++c) e.rgb[c] *= s.samples[i].albedo[c];
     }
     return out;
   }
@@ -216,8 +217,7 @@ class LightStage final : public Stage {
   // Vertices the light refinement added are corners of no patch: they take the shot light interpolated
   // over the patch they lie on, found by a short ray onto its front.
   // Returns how many found no patch (they take their polygon's nearest corner's).
-  static std::size_t spread_to_refined_vertices(const CompileState& s, std::vector<float>& light,
-                                                std::size_t k) {
+  static std::size_t spread_to_refined_vertices(const CompileState& s, SparseLight& light) {
     const PatchSet& set = s.patches;
     std::vector<std::uint8_t> corner(set.vertices.size(), 0);
     std::vector<Triangle> triangles;
@@ -227,7 +227,7 @@ class LightStage final : public Stage {
       triangles.push_back({set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]], i});
     }
     const TriangleBvh bvh(std::move(triangles));
-    std::vector<float> filled(light);
+    SparseLight filled(light);
     std::atomic<std::size_t> lost{0};
     parallel_ranges(set.vertices.size(), 1024, s.options.threads, [&](std::size_t first, std::size_t last) {
       for (std::size_t v = first; v < last; ++v) {
@@ -248,15 +248,14 @@ class LightStage final : public Stage {
               nearest = u;
             }
           }
-          std::copy_n(&light[nearest * k], k, &filled[v * k]);
+          filled.set_row(v, light.row(nearest));
           continue;
         }
         const Patch& p = set.patches[bvh.triangles()[hit->triangle].polygon];
         const auto w = triangle_weights(set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]],
                                         set.vertices[v] + n * (kLocateOffset - hit->t));
-        for (std::size_t j = 0; j < k; ++j)
-          filled[v * k + j] = static_cast<float>(w[0] * light[p.v[0] * k + j] + w[1] * light[p.v[1] * k + j] +
-                                                 w[2] * light[p.v[2] * k + j]);
+        filled.clear_row(v);
+        for (int i = 0; i < 3; ++i) filled.add(v, light.row(p.v[i]), w[i]);
       }
     });
     light = std::move(filled);
@@ -264,7 +263,7 @@ class LightStage final : public Stage {
   }
 
   // Direct light at each patch's centroid (panels glow, so theirs stay 0), [patch][circuit][channel].
-  static std::vector<double> gather_patch_direct(CompileState& s, DirectLightStats* stats) {
+  static SparseLight gather_patch_direct(CompileState& s, DirectLightStats* stats) {
     std::vector<std::uint8_t> panel(s.out.polygons.size(), 0);
     for (const auto& [polygon, luminaire] : s.panel_polygons) panel[polygon] = 1;
     std::vector<SurfaceSample> samples;
@@ -279,12 +278,10 @@ class LightStage final : public Stage {
     return gather_direct(s, samples, patch_of, s.patches.patches.size(), stats);
   }
 
-  static std::vector<double> patch_means(const PatchSet& patches, const std::vector<double>& per_vertex,
-                                         std::size_t k) {
-    std::vector<double> out(patches.patches.size() * k, 0.0);
+  static SparseLight patch_means(const PatchSet& patches, const SparseLight& per_vertex) {
+    SparseLight out(patches.patches.size());
     for (std::size_t p = 0; p < patches.patches.size(); ++p)
-      for (const std::uint32_t v : patches.patches[p].v)
-        for (std::size_t j = 0; j < k; ++j) out[p * k + j] += per_vertex[v * k + j] / 3.0;
+      for (const std::uint32_t v : patches.patches[p].v) out.add(p, per_vertex.row(v), 1.0 / 3.0);
     return out;
   }
 
@@ -296,13 +293,11 @@ class LightStage final : public Stage {
                                          RadiosityOptions ro, double target, std::string& how) {
     // The power the solver shoots: the luminaires', or with direct light gathered the light it reflects.
     double watts = 0.0;
-    if (ro.gathered_direct.empty()) {
+    if (!ro.gathered_direct) {
       for (const auto& l : s.model.luminaires) watts += (l.power.r + l.power.g + l.power.b) / 3.0;
     } else {
-      const std::size_t k = circuits * 3;
       for (std::size_t p = 0; p < s.patches.patches.size(); ++p)
-        for (std::size_t j = 0; j < k; ++j)
-          watts += ro.gathered_direct[p * k + j] * s.patches.patches[p].area / 3.0;
+        watts += ro.gathered_direct->scalar(p) * s.patches.patches[p].area;
     }
     const double most = kMaxFirstRoundRays / std::max(watts, 1e-12);
     ro.rays_per_watt = std::min(most, kPilotRays / std::max(watts, 1e-12));
@@ -330,17 +325,17 @@ class LightStage final : public Stage {
     auto& out = s.out;
     const std::size_t circuits = s.model.circuits.size();
     DirectLightStats st;
-    const auto light = gather_direct(s, s.samples, s.sample_vertex, out.vertices.size(), &st);
-    std::transform(light.begin(), light.end(), out.light.begin(),
-                   [](double b) { return static_cast<float>(b); });
+    SparseLight light = gather_direct(s, s.samples, s.sample_vertex, out.vertices.size(), &st);
     // Panels glow with their exitance Phi/A in their own circuit.
     for (const auto& [polygon, luminaire] : s.panel_polygons) {
       const auto& poly = out.polygons[polygon];
       const auto& l = out.luminaires[luminaire];
-      for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
-        for (int c = 0; c < 3; ++c)
-          out.light[(v * circuits + l.circuit) * 3 + c] = l.power[c] / (l.width * l.height);
+      for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v) {
+        double* b = light.at(v, l.circuit);
+        for (int c = 0; c < 3; ++c) b[c] = l.power[c] / (l.width * l.height);
+      }
     }
+    out.light = light.to_rows();
     return StageOutcome::ran(s.samples.size(), st.shadow_rays,
                              fmt::format("direct: {} shadow rays, {} occluded, {} luminaires, {} circuits",
                                          st.shadow_rays, st.occluded, s.model.luminaires.size(), circuits));

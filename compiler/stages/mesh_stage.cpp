@@ -67,7 +67,7 @@ class MeshStage final : public Stage {
   // `direct`: the direct light it gathered, per mesh (light_refinement.hpp).
   static LightRefinementStats refine_by_light(
       const CompileState& s, const std::vector<std::pair<const model::Polygon*, std::uint32_t>>& to_emit,
-      std::vector<PolygonMesh>& meshes, std::vector<std::vector<float>>& direct) {
+      std::vector<PolygonMesh>& meshes, std::vector<SparseLight>& direct) {
     const auto& l = s.config.lighting;
     if (!refines_by_light(s)) return {};
     std::vector<bool> lit;
@@ -95,10 +95,9 @@ class MeshStage final : public Stage {
   // Writes one polygon's diced mesh and coarse form into the bundle and the light stage's inputs.
   // `solve`: the triangles the radiosity solver shoots between (the dicing before light refinement, whose
   // vertices are the first of `mesh`'s), or `mesh` itself. `direct`: the refinement's direct light at the
-  // first of `mesh`'s vertices, `circuits` per vertex, when it ran.
+  // first of `mesh`'s vertices (a row each), when it ran.
   void emit(CompileState& s, const model::Polygon& poly, std::uint32_t luminaire, const PolygonMesh& mesh,
-            const PolygonMesh& coarse, const PolygonMesh& solve, std::span<const float> direct,
-            std::size_t circuits);
+            const PolygonMesh& coarse, const PolygonMesh& solve, const SparseLight* direct);
 
   bool refined_direct_ = false;  // the refinement's direct light is handed to the light stage
   std::size_t coarse_fallbacks_ = 0;
@@ -108,7 +107,7 @@ class MeshStage final : public Stage {
 
 void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t luminaire,
                      const PolygonMesh& mesh, const PolygonMesh& coarse, const PolygonMesh& solve,
-                     std::span<const float> direct, std::size_t circuits) {
+                     const SparseLight* direct) {
   auto& out = s.out;
   const double cell_size = dice_size(s, poly);
   if (mesh.triangles.empty()) return;
@@ -117,7 +116,7 @@ void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t 
   const model::Rgb albedo = poly.role == model::Role::Luminaire
                                 ? model::Rgb(kPanelReflectance)
                                 : s.model.materials[poly.material].reflectance;
-  const std::size_t k = s.model.circuits.size() * 3, known = circuits ? direct.size() / (circuits * 3) : 0;
+  const std::size_t known = direct ? direct->rows() : 0;
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const model::Vec3& v = mesh.vertices[i];
     model::VertexRecord r{};
@@ -133,9 +132,7 @@ void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t 
       s.sample_vertex.push_back(static_cast<std::uint32_t>(out.vertices.size()));
       if (refined_direct_) {
         s.sample_refined.push_back(i < known);
-        s.sample_direct.resize(s.sample_direct.size() + k, 0.0f);
-        if (i < known)
-          std::copy_n(&direct[i * circuits * 3], circuits * 3, s.sample_direct.end() - std::ptrdiff_t(k));
+        s.sample_direct.append_row(i < known ? direct->row(i) : std::span<const CircuitLight>());
       }
     }
     out.vertices.push_back(r);
@@ -214,7 +211,7 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
   // first of each mesh, so its triangles still index the refined mesh's vertices.
   std::vector<PolygonMesh> diced;
   if (refines_by_light(s)) diced = meshes;
-  std::vector<std::vector<float>> direct;
+  std::vector<SparseLight> direct;
   const LightRefinementStats refined = refine_by_light(s, to_emit, meshes, direct);
   if (refined.edges_split == 0) diced.clear();
   refined_direct_ = !diced.empty() && refined.circuits > 0;
@@ -236,7 +233,7 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
   for (std::size_t i = 0; i < to_emit.size(); ++i)
     emit(s, *to_emit[i].first, to_emit[i].second, meshes[i],
          coarse_meshes.empty() ? meshes[i] : coarse_meshes[i], diced.empty() ? meshes[i] : diced[i],
-         refined_direct_ ? std::span<const float>(direct[i]) : std::span<const float>(), refined.circuits);
+         refined_direct_ ? &direct[i] : nullptr);
   add_polygon_textures(s.model, emitted_, out);
   return StageOutcome::ran(
       s.model.polygons.size() + panels.size(), out.polygons.size(),

@@ -14,11 +14,12 @@ namespace {
 constexpr double kExposurePercentile = 0.95;
 constexpr double kExposureHeadroom = 0.8;
 
-float automatic_exposure(const CompileState& s, std::size_t circuits) {
+float automatic_exposure(const CompileState& s) {
   std::vector<float> totals;
-  for (std::size_t i = 0; i < s.samples.size(); ++i) {
+  for (std::size_t i = 0; i < s.samples.size() && !s.out.light.empty(); ++i) {
     float sum = 0.0f;
-    for (std::size_t c = 0; c < circuits * 3; ++c) sum += s.out.light[s.sample_vertex[i] * circuits * 3 + c];
+    for (const model::LightEntry& e : s.out.light.row(s.sample_vertex[i]))
+      for (const float b : e.rgb) sum += b;
     if (sum > 0.0f) totals.push_back(sum / 3.0f);
   }
   float exposure = 1.0f;
@@ -49,8 +50,8 @@ class MetaStage final : public Stage {
     meta.scene_hash = scene_hash(s.config);
     meta.circuit_count = static_cast<std::uint32_t>(circuits);
     meta.compiler_version = out.add_string(std::string("walk ") + version());
-    meta.exposure = s.config.lighting.exposure ? static_cast<float>(*s.config.lighting.exposure)
-                                               : automatic_exposure(s, circuits);
+    meta.exposure =
+        s.config.lighting.exposure ? static_cast<float>(*s.config.lighting.exposure) : automatic_exposure(s);
     for (const auto& m : model.materials)
       out.materials.push_back(
           {{float(m.reflectance.r), float(m.reflectance.g), float(m.reflectance.b)}, out.add_string(m.name)});

@@ -38,9 +38,9 @@ struct CompileState {
   // The mesh stage's, for the light stage.
   std::vector<SurfaceSample> samples;        // one per vertex of a lit polygon
   std::vector<std::uint32_t> sample_vertex;  // bundle vertex of each sample
-  // With light refinement, the direct light it gathered at each sample, [sample][circuit][3] for reflectance
-  // 1, where sample_refined says it did (seam vertices added after it did not); both empty otherwise.
-  std::vector<float> sample_direct;
+  // With light refinement, the direct light it gathered at each sample (a row each) for reflectance 1,
+  // where sample_refined says it did (seam vertices added after it did not); both empty otherwise.
+  SparseLight sample_direct;
   std::vector<std::uint8_t> sample_refined;
   std::vector<Triangle> occluders;                                      // direct lighting's shadow casters
   std::vector<std::pair<std::uint32_t, std::uint32_t>> panel_polygons;  // (bundle polygon, luminaire)

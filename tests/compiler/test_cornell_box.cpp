@@ -70,7 +70,7 @@ TEST(CornellBox, ShooterAgreesWithIndependentReference) {
     if (box.surfaces[set.patches[i].polygon].material == "emitter") continue;
     for (int c = 0; c < 3; ++c) {
       mean_ref += set.patches[i].area * ref[i * 3 + c];
-      mean_ours += set.patches[i].area * r.radiosity[i * 3 + c];
+      mean_ours += set.patches[i].area * r.radiosity.value(i, std::size_t(c));
     }
     area += 3.0 * set.patches[i].area;
   }
@@ -81,7 +81,7 @@ TEST(CornellBox, ShooterAgreesWithIndependentReference) {
   for (std::size_t i = 0; i < set.patches.size(); ++i) {
     if (box.surfaces[set.patches[i].polygon].material == "emitter") continue;
     for (int c = 0; c < 3; ++c) {
-      const double d = r.radiosity[i * 3 + c] / mean_ours - ref[i * 3 + c] / mean_ref;
+      const double d = r.radiosity.value(i, std::size_t(c)) / mean_ours - ref[i * 3 + c] / mean_ref;
       sq += set.patches[i].area * d * d;
       weight += set.patches[i].area;
       if (set.patches[i].area > 1e-3) worst = std::max(worst, std::abs(d));
@@ -99,7 +99,7 @@ TEST(CornellBox, ShooterAgreesWithIndependentReference) {
   for (std::size_t i = 0; i < set.patches.size(); ++i) {
     auto& s = surface[set.patches[i].polygon];
     for (int c = 0; c < 3; ++c) {
-      s[0] += set.patches[i].area * r.radiosity[i * 3 + c];
+      s[0] += set.patches[i].area * r.radiosity.value(i, std::size_t(c));
       s[1] += set.patches[i].area * ref[i * 3 + c];
     }
     s[2] += 3.0 * set.patches[i].area;

@@ -125,19 +125,19 @@ TEST(LightRefinement, HandsBackTheLightAtEveryRefinedVertex) {
   std::vector<PolygonMesh> meshes{floor_mesh(0.5), floor_mesh(0.5)};
   LightRefinementOptions o;
   o.tolerance = 0.02;
-  std::vector<std::vector<float>> direct;
+  std::vector<SparseLight> direct;
   const auto stats = refine_by_direct_light(meshes, {true, false}, {lamp()}, far_away_occluder(), o, &direct);
   ASSERT_GT(stats.edges_split, 0u);
   ASSERT_EQ(stats.circuits, 1u);
   ASSERT_EQ(direct.size(), 2u);
   EXPECT_TRUE(direct[1].empty());  // the panel: no receiver
-  ASSERT_EQ(direct[0].size(), meshes[0].vertices.size() * 3);
+  ASSERT_EQ(direct[0].rows(), meshes[0].vertices.size());
   // Gathering starts 0.1 mm off the surface (direct_light.cpp's shadow offset), 2e-4 of the lamp's 0.5 m
-  // height; float storage adds 1e-7.
+  // height.
   constexpr double kRelativeTolerance = 5e-4;
   for (std::size_t v = 0; v < meshes[0].vertices.size(); ++v)
     for (int ch = 0; ch < 3; ++ch)
-      EXPECT_NEAR(direct[0][v * 3 + ch], exact(meshes[0].vertices[v]),
+      EXPECT_NEAR(direct[0].value(v, std::size_t(ch)), exact(meshes[0].vertices[v]),
                   kRelativeTolerance * exact(meshes[0].vertices[v]))
           << "vertex " << v;
 }

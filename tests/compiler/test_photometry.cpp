@@ -277,7 +277,7 @@ TEST(Photometry, GatheredIlluminanceIsTheTableOverDistanceSquared) {
   // Floor points 1 m towards +x (C0) and -x (C180): E = I(gamma, C) cos(gamma) / r^2, in lux.
   for (const auto& [x, c] : {std::pair{1.0, 0.0}, std::pair{-1.0, 180.0}, std::pair{0.0, 0.0}}) {
     const SurfaceSample s{{x, 0, 0}, {0, 0, 1}, {1, 1, 1}};
-    const auto b = direct_light({&s, 1}, {l}, 1, empty, {1, 1});
+    const auto b = direct_light({&s, 1}, {l}, 1, empty, {1, 1}).dense(1);
     const double r2 = x * x + 4.0, cos_g = 2.0 / std::sqrt(r2);
     const double gamma = std::acos(cos_g) / kDeg;
     const double expected = d.candela_at(gamma, c) * cos_g / r2;
@@ -311,7 +311,7 @@ TEST(Photometry, ShotLightAgreesWithGatheredLightOnAFloor) {
   for (std::size_t i = 0; i < set.patches.size(); ++i) {
     const auto& p = set.patches[i];
     const Vec3 c = (set.vertices[p.v[0]] + set.vertices[p.v[1]] + set.vertices[p.v[2]]) / 3.0;
-    shot_half[c.x > 0] += shot.radiosity[i * 3] * p.area;
+    shot_half[c.x > 0] += shot.radiosity.value(i, 0) * p.area;
   }
   constexpr int kSide = 200;
   constexpr double kStep = 4.0 / kSide;
@@ -320,7 +320,7 @@ TEST(Photometry, ShotLightAgreesWithGatheredLightOnAFloor) {
     for (int j = 0; j < kSide; ++j)
       grid.push_back({{-2 + (i + 0.5) * kStep, -2 + (j + 0.5) * kStep, 0}, {0, 0, 1}, {0.5, 0.5, 0.5}});
   const TriangleBvh empty({});
-  const auto gathered = direct_light(grid, {l}, 1, empty, {1, 2});
+  const auto gathered = direct_light(grid, {l}, 1, empty, {1, 2}).dense(1);
   for (std::size_t k = 0; k < grid.size(); ++k)
     gathered_half[grid[k].position.x > 0] += gathered[k * 3] * kStep * kStep;
   for (int h = 0; h < 2; ++h) EXPECT_NEAR(shot_half[h] / gathered_half[h], 1.0, 0.02) << "half " << h;

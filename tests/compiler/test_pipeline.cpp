@@ -48,8 +48,13 @@ TEST_F(PipelineTest, HouseCompilesWithOneLitCircuitPerRoom) {
   EXPECT_EQ(b.groups.size(), 18u);
   EXPECT_EQ(b.luminaires.size(), 16u);
   EXPECT_EQ(b.circuits.size(), 16u);
-  ASSERT_EQ(b.light.size(), b.vertices.size() * b.circuits.size() * 3);
-  for (float v : b.light) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  ASSERT_EQ(b.light.rows(), b.vertices.size());
+  for (const auto& e : b.light.entries) {
+    ASSERT_LT(e.circuit, b.circuits.size());
+    for (float v : e.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  }
+  // Sparse: a room's vertices hold its own circuit and a few neighbours', not all 16.
+  EXPECT_LT(b.light.entries.size(), b.vertices.size() * b.circuits.size() / 2);
   for (const auto& p : b.polygons) EXPECT_NE(p.role, static_cast<std::uint32_t>(model::Role::Opening));
   // The coarse form drawn while moving: one range per polygon, over its own vertices, far fewer triangles.
   ASSERT_EQ(b.coarse_ranges.size(), b.polygons.size());
@@ -87,7 +92,7 @@ TEST_F(PipelineTest, HouseCompilesWithOneLitCircuitPerRoom) {
     auto& sum = floor_light[b.strings.c_str() + b.groups[poly.group].name];
     sum.resize(circuits, 0.0);
     for (std::uint32_t v = poly.first_vertex; v < poly.first_vertex + poly.vertex_count; ++v)
-      for (std::size_t c = 0; c < circuits; ++c) sum[c] += b.light[(v * circuits + c) * 3 + 1];
+      for (const auto& e : b.light.row(v)) sum[e.circuit] += e.rgb[1];
   }
   std::size_t rooms_checked = 0;
   for (const auto& [room, sum] : floor_light) {
@@ -130,7 +135,7 @@ TEST_F(PipelineTest, LightIsReusedUnlessItsInputsChange) {
   ASSERT_TRUE(compile_to_file(scene_for(model), out, false, &stages));
   EXPECT_TRUE(stage(stages, "light").ran);
   const auto first = model::Bundle::open(out);
-  const std::vector<float> light(first->light().begin(), first->light().end());
+  const std::vector<float> light = first->light().dense(first->circuits().size());
 
   // Display-only knobs changed: the solve is kept, byte for byte.
   std::ifstream in(dir_ / "scene.toml");
@@ -142,7 +147,7 @@ TEST_F(PipelineTest, LightIsReusedUnlessItsInputsChange) {
   EXPECT_FALSE(stage(stages, "light").ran);
   EXPECT_TRUE(stage(stages, "light").reused);
   const auto second = model::Bundle::open(out);
-  EXPECT_TRUE(std::equal(light.begin(), light.end(), second->light().begin(), second->light().end()));
+  EXPECT_EQ(light, second->light().dense(second->circuits().size()));
   EXPECT_FLOAT_EQ(second->meta().ambient, 0.5f);
 
   // A reflectance changed: the light must be solved again.
@@ -156,17 +161,17 @@ TEST_F(PipelineTest, CompactLightIsStoredWithItsMeasuredError) {
   const CompileResult r = compile_scene(load_scene_config(kHouseScene));
   const auto& b = r.bundle;
   ASSERT_EQ(b.compact_colour.size(), b.vertices.size());
-  ASSERT_EQ(b.compact_intensity.size(), b.vertices.size() * b.circuits.size());
-  ASSERT_EQ(b.polygon_light.size(), b.polygons.size() * b.circuits.size() * 3);
+  ASSERT_EQ(b.compact_intensity.rows(), b.vertices.size());
+  ASSERT_EQ(b.polygon_light.rows(), b.polygons.size());
   // Each circuit is shown compact where its own error is within the limit, else full; the record says
   // which and carries the error that decided it.
   std::vector<std::uint8_t> glowing(b.vertices.size(), 0);  // the panels, left out of the errors
   for (const auto& p : b.polygons)
     if (p.role == std::uint32_t(model::Role::Luminaire))
       std::fill_n(glowing.begin() + p.first_vertex, p.vertex_count, std::uint8_t(1));
-  const CompactLight c = choose_light_forms(b.light, b.vertices.size(), b.circuits.size(), glowing);
+  const CompactLight c = choose_light_forms(b.light.view(), b.vertices.size(), b.circuits.size(), glowing);
   // Measured over the panels too, the error would be a fraction of it: their exitance swamps the walls'.
-  const CompactLight with_panels = choose_light_forms(b.light, b.vertices.size(), b.circuits.size());
+  const CompactLight with_panels = choose_light_forms(b.light.view(), b.vertices.size(), b.circuits.size());
   EXPECT_LT(with_panels.rms_error_all_on, 0.5 * c.rms_error_all_on);
   EXPECT_LT(c.rms_error_all_on, 0.05);
   EXPECT_GT(c.rms_error_all_on, 0.0);  // lossy: a zero would mean the error is not measured
@@ -184,16 +189,18 @@ TEST_F(PipelineTest, CompactLightIsStoredWithItsMeasuredError) {
   model::write_bundle(path, b);
   const auto read = model::Bundle::open(path);
   EXPECT_EQ(read->compact_colour().size(), b.vertices.size());
-  EXPECT_EQ(read->compact_intensity().size(), b.compact_intensity.size());
-  EXPECT_EQ(read->polygon_light().size(), b.polygon_light.size());
+  EXPECT_EQ(read->compact_intensity().codes.size(), b.compact_intensity.codes.size());
+  EXPECT_EQ(read->polygon_light().entries.size(), b.polygon_light.entries.size());
+  EXPECT_EQ(read->light().rows(), b.vertices.size());
 }
 
 TEST(CompactLight, GreyLightOfOneCircuitRoundTripsWithinQuantisation) {
   // From 50 W/m2 down to a millionth of it: the hot spot and the dim wall alike.
   std::vector<float> light;
   for (int v = 0; v < 1000; ++v) light.insert(light.end(), 3, 50.0f * std::pow(1e-6f, float(v) / 999.0f));
-  const CompactLight c = compact_light(light, 1000, 1);
-  const auto back = expand_compact(c, light, 1000, 1);
+  const auto rows = model::LightRows::from_dense(light, 1);
+  const CompactLight c = compact_light(rows.view(), 1000, 1);
+  const auto back = expand_compact(c, rows.view(), 1000, 1);
   // Logarithmic coding: half a step is a ratio of 2^(8/254) (2.2 %) at every level down to 2^-16 of the
   // scale; below that a value reads 0 or the smallest code's.
   const double half_step = std::exp2(0.5 * model::kCompactStops / 254.0) - 1.0;
@@ -240,9 +247,10 @@ std::vector<float> white_and_red(std::size_t vertices) {
 TEST(CompactLight, ATintedCircuitIsShownFullAndTheOthersCompact) {
   const std::size_t n = 500;
   const auto light = white_and_red(n);
-  const CompactLight both = compact_light(light, n, 2);
+  const auto rows = model::LightRows::from_dense(light, 2);
+  const CompactLight both = compact_light(rows.view(), n, 2);
   EXPECT_GT(both.circuit_rms[1], kCompactErrorLimit);  // the shared colour misrepresents the red circuit
-  const CompactLight chosen = choose_light_forms(light, n, 2);
+  const CompactLight chosen = choose_light_forms(rows.view(), n, 2);
   EXPECT_EQ(chosen.compact[0], 1);
   EXPECT_EQ(chosen.compact[1], 0);
   EXPECT_GT(chosen.circuit_rms[1], kCompactErrorLimit);  // the reason it is full, kept for the report
@@ -251,7 +259,7 @@ TEST(CompactLight, ATintedCircuitIsShownFullAndTheOthersCompact) {
   EXPECT_EQ(chosen.worst_circuit_rms, chosen.circuit_rms[0]);
   EXPECT_EQ(chosen.scale[1], 0.0f);
   // Shown: the full circuit exactly as solved, the compact one within its error.
-  const auto shown = expand_compact(chosen, light, n, 2);
+  const auto shown = expand_compact(chosen, rows.view(), n, 2);
   for (std::size_t v = 0; v < n; ++v)
     for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(shown[(v * 2 + 1) * 3 + ch], light[(v * 2 + 1) * 3 + ch]);
   EXPECT_LT(chosen.rms_error_all_on, both.rms_error_all_on);
@@ -264,7 +272,7 @@ TEST(CompactLight, DarkAndUniformCircuitsStayCompact) {
     light.insert(light.end(), {0.0f, 0.0f, 0.0f});                          // a circuit with no light here
     light.insert(light.end(), {float(v + 1), float(v + 1), float(v + 1)});  // grey
   }
-  const CompactLight c = choose_light_forms(light, n, 2);
+  const CompactLight c = choose_light_forms(model::LightRows::from_dense(light, 2).view(), n, 2);
   EXPECT_EQ(c.compact[0], 1);
   EXPECT_EQ(c.compact[1], 1);
   EXPECT_EQ(c.circuit_rms[0], 0.0);

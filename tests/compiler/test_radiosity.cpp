@@ -50,7 +50,7 @@ void add_box(PatchSet& set, Vec3 lo, Vec3 hi, double rho, double grid, bool with
 double area_mean(const PatchSet& set, const RadiosityResult& r, std::size_t channel = 0) {
   double ab = 0.0, a = 0.0;
   for (std::size_t i = 0; i < set.patches.size(); ++i) {
-    ab += set.patches[i].area * r.radiosity[i * r.circuits * 3 + channel];
+    ab += set.patches[i].area * r.radiosity.value(i, channel);
     a += set.patches[i].area;
   }
   return ab / a;
@@ -63,7 +63,9 @@ void expect_energy_balance(const RadiosityStats& s) {
 }
 
 void expect_finite_non_negative(const RadiosityResult& r) {
-  for (double b : r.radiosity) ASSERT_TRUE(std::isfinite(b) && b >= 0.0) << b;
+  for (std::size_t i = 0; i < r.radiosity.rows(); ++i)
+    for (const auto& e : r.radiosity.row(i))
+      for (double b : e.rgb) ASSERT_TRUE(std::isfinite(b) && b >= 0.0) << b;
 }
 
 std::vector<AreaEmitter> everything_emits(const PatchSet& set, double e) {
@@ -84,7 +86,7 @@ TEST(Radiosity, WhiteFurnaceConvergesToClosedForm) {
   EXPECT_NEAR(area_mean(set, r), expected, 0.01 * expected);
   // Each patch receives ~25k rays: Monte Carlo noise ~0.6%; 4 sigma.
   for (std::size_t i = 0; i < set.patches.size(); ++i)
-    EXPECT_NEAR(r.radiosity[i * 3], expected, 0.025 * expected);
+    EXPECT_NEAR(r.radiosity.value(i, 0), expected, 0.025 * expected);
   EXPECT_EQ(r.stats.escaped, 0.0);
   EXPECT_EQ(r.stats.back_face, 0.0);
   expect_energy_balance(r.stats);
@@ -126,7 +128,7 @@ TEST(Radiosity, ParallelUnitSquaresMatchAnalyticFormFactor) {
   // Two parallel unit squares one unit apart (Howell's catalogue C-11): F = 0.199825.
   double received = 0.0;
   for (std::uint32_t i = receiver.first; i < receiver.second; ++i)
-    received += r.radiosity[i * 3] * set.patches[i].area;
+    received += r.radiosity.value(i, 0) * set.patches[i].area;
   EXPECT_NEAR(received, 0.199825, 0.005 * 0.199825);  // 2M rays: sigma ~0.1%
   expect_energy_balance(r.stats);
 }
@@ -179,7 +181,8 @@ TEST(Radiosity, GatheredDirectLightGivesTheCie171MeanAndBalances) {
   RadiosityOptions o;
   o.rays_per_watt = 40.0;
   o.residual = 1e-4;
-  o.gathered_direct = direct;
+  const SparseLight gathered = SparseLight::from_dense(direct, 1);
+  o.gathered_direct = &gathered;
   PointEmitter point;  // shoots nothing: its light is the gathered one
   point.position = source;
   point.power = model::Rgb(kFlux);
@@ -196,8 +199,10 @@ TEST(Radiosity, GatheredDirectLightGivesTheCie171MeanAndBalances) {
   EXPECT_EQ(r.stats.escaped, 0.0);
   EXPECT_GT(r.stats.estimated_error, 0.0);
   EXPECT_LT(r.stats.estimated_error, 0.2);
-  o.gathered_direct = std::span<const double>(direct.data(), direct.size() - 3);
-  EXPECT_THROW((void)solve_radiosity(set, {}, {}, 1, o), std::invalid_argument) << "one value short";
+  const SparseLight short_one =
+      SparseLight::from_dense(std::span<const double>(direct.data(), direct.size() - 3), 1);
+  o.gathered_direct = &short_one;
+  EXPECT_THROW((void)solve_radiosity(set, {}, {}, 1, o), std::invalid_argument) << "one patch short";
 }
 
 // Irradiance at (px, py, 0) from a Lambertian rectangle [x0, x1] x [y0, y1] at height h facing down, per unit
@@ -241,7 +246,7 @@ TEST(Radiosity, RectangularSourceIrradianceBelowCornerAndCentreMatchesTheClosedF
   for (const auto& rc : receivers) {
     double received = 0.0, area = 0.0;
     for (std::uint32_t i = rc.patches.first; i < rc.patches.second; ++i) {
-      received += r.radiosity[i * 3] * set.patches[i].area;
+      received += r.radiosity.value(i, 0) * set.patches[i].area;
       area += set.patches[i].area;
     }
     constexpr int kSteps = 21;
@@ -295,9 +300,10 @@ TEST(Radiosity, BackToBackWallsDoNotLeakIntoTheNextRoom) {
   o.rays_per_watt = 500;
   const auto r = solve_radiosity(set, emit, {}, 2, o);
   for (std::uint32_t i = room_b_first; i < lamp.first; ++i)
-    for (int k = 0; k < 6; ++k) ASSERT_EQ(r.radiosity[i * 6 + k], 0.0) << "patch " << i << " of room B lit";
+    for (int k = 0; k < 6; ++k)
+      ASSERT_EQ(r.radiosity.value(i, std::size_t(k)), 0.0) << "patch " << i << " of room B lit";
   for (std::uint32_t i = 0; i < room_b_first; ++i)
-    EXPECT_EQ(r.radiosity[i * 6], 0.0);  // circuit 0: no emitter
+    EXPECT_EQ(r.radiosity.value(i, 0), 0.0);  // circuit 0: no emitter
   EXPECT_EQ(r.stats.escaped, 0.0);
   // The only back faces rays can meet are the top of the one-sided lamp, seen from the ceiling 1 cm above.
   EXPECT_LT(r.stats.back_face, 0.01 * r.stats.emitted);
@@ -325,7 +331,7 @@ TEST(Radiosity, SliversTinyPatchesAndFlushLuminaireStayFinite) {
   expect_finite_non_negative(r);
   expect_energy_balance(r.stats);
   EXPECT_EQ(r.stats.escaped, 0.0) << "light leaked through a joint";
-  EXPECT_GT(r.radiosity[0], 0.0);  // the floor is lit
+  EXPECT_GT(r.radiosity.value(0, 0), 0.0);  // the floor is lit
 }
 
 TEST(Radiosity, SpotLightsOnlyItsConeAndKeepsItsPower) {
@@ -349,9 +355,9 @@ TEST(Radiosity, SpotLightsOnlyItsConeAndKeepsItsPower) {
     if (p.normal.z < 0.5) continue;
     const Vec3 c = (set.vertices[p.v[0]] + set.vertices[p.v[1]] + set.vertices[p.v[2]]) / 3.0;
     if (std::hypot(c.x, c.y) > footprint) {
-      EXPECT_EQ(r.radiosity[i * 3], 0.0) << "patch " << i << " outside the cone";
+      EXPECT_EQ(r.radiosity.value(i, 0), 0.0) << "patch " << i << " outside the cone";
     }
-    lit += r.radiosity[i * 3] > 0.0;
+    lit += r.radiosity.value(i, 0) > 0.0;
   }
   EXPECT_GT(lit, 4u);
   EXPECT_EQ(r.stats.escaped, 0.0);
@@ -369,7 +375,7 @@ TEST(Radiosity, SameResultForOneAndTwoThreads) {
   const auto one = solve_radiosity(set, emit, {}, 1, o);
   o.threads = 2;
   const auto two = solve_radiosity(set, emit, {}, 1, o);
-  EXPECT_EQ(one.radiosity, two.radiosity);
+  EXPECT_EQ(one.radiosity.dense(1), two.radiosity.dense(1));
 }
 
 }  // namespace
@@ -389,8 +395,8 @@ double relative_rms(const PatchSet& set, const RadiosityResult& a, const Radiosi
   for (std::size_t i = 0; i < set.patches.size(); ++i) {
     double x = 0.0, y = 0.0;
     for (std::size_t j = 0; j < k; ++j) {
-      x += a.radiosity[i * k + j] / 3.0;
-      y += ref.radiosity[i * k + j] / 3.0;
+      x += a.radiosity.value(i, j) / 3.0;
+      y += ref.radiosity.value(i, j) / 3.0;
     }
     if (skip[i]) continue;
     diff += set.patches[i].area * (x - y) * (x - y);
@@ -438,6 +444,28 @@ TEST(Radiosity, ErrorEstimateTracksTheMeasuredError) {
     EXPECT_LT(r.stats.estimated_error, previous);  // more rays, smaller estimate
     previous = r.stats.estimated_error;
   }
+}
+
+}  // namespace
+}  // namespace walk::compiler
+
+namespace walk::compiler {
+namespace {
+
+// An emitter on a circuit the solve was not given is a caller's error, said before a ray is cast: a sparse
+// row would otherwise hold a circuit no bundle record names.
+TEST(Radiosity, AnEmitterBeyondTheCircuitCountIsRefused) {
+  PatchSet set;
+  add_box(set, Vec3(0), Vec3(2, 3, 2.5), 0.6, 0.5);
+  const std::vector<AreaEmitter> emit{{0, 1, model::Rgb(50.0)}};
+  EXPECT_THROW((void)solve_radiosity(set, emit, {}, 1, RadiosityOptions{}), std::invalid_argument);
+  PointEmitter point;
+  point.position = Vec3(1.0, 1.5, 1.2);
+  point.power = model::Rgb(10.0);
+  point.circuit = 3;
+  EXPECT_THROW(
+      (void)solve_radiosity(set, {}, std::span<const PointEmitter>(&point, 1), 2, RadiosityOptions{}),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -89,7 +89,8 @@ model::BundleContents two_room_contents() {
     b.meta.bounds_min[k] = 0.0f;
     b.meta.bounds_max[k] = k == 0 ? 8.0f : k == 1 ? 4.0f : 3.0f;
   }
-  b.light.assign(b.vertices.size() * b.circuits.size() * 3, 0.1f);
+  b.light = model::LightRows::from_dense(std::vector<float>(b.vertices.size() * b.circuits.size() * 3, 0.1f),
+                                         b.circuits.size());
   // Two cells split at x = 4; every polygon potentially visible from both.
   model::CellRecord a{{0, 0, 0}, {4, 4, 3}, 0, 0}, c{{4, 0, 0}, {8, 4, 3}, 0, 0};
   for (std::uint32_t i = 0; i < b.polygons.size(); ++i) b.pvs.push_back(i);

@@ -37,7 +37,7 @@ BundleContents small_bundle() {
   c.groups.push_back({c.add_string("room")});
   c.circuits.push_back({c.add_string("a"), 1.0f});
   c.circuits.push_back({c.add_string("b"), 0.5f});
-  c.light.assign(4 * 2 * 3, 0.25f);
+  c.light = LightRows::from_dense(std::vector<float>(4 * 2 * 3, 0.25f), 2);
   c.cells.push_back({{0, 0, 0}, {1, 1, 0}, 0, 1});
   c.pvs = {0};
   c.stages.push_back({c.add_string("import"), 1, 42, 0.5, 1, 1});
@@ -82,7 +82,8 @@ TEST_F(BundleTest, RoundTripKeepsEveryRecord) {
   EXPECT_EQ(b->string(b->polygons()[0].name), "floor");
   EXPECT_EQ(b->string(b->circuits()[1].name), "b");
   EXPECT_FLOAT_EQ(b->circuits()[1].default_level, 0.5f);
-  EXPECT_EQ(b->light().size(), 24u);
+  ASSERT_EQ(b->light().rows(), 4u);
+  EXPECT_EQ(b->light().dense(2), std::vector<float>(24, 0.25f));
   EXPECT_EQ(b->stages()[0].input_hash, 42u);
   EXPECT_EQ(b->file_size() % kSectionAlignment, 0u);
 }
@@ -90,8 +91,9 @@ TEST_F(BundleTest, RoundTripKeepsEveryRecord) {
 TEST_F(BundleTest, OptionalLightFormsRoundTrip) {
   BundleContents c = small_bundle();
   c.compact_colour.assign(4, {200, 180, 160, 255});
-  c.compact_intensity = {0, 10, 20, 30, 40, 50, 60, 255};
-  c.polygon_light.assign(1 * 2 * 3, 0.75f);
+  // Circuit 1 is shown compact: its codes at the four vertices (0 at the first: no light there).
+  c.compact_intensity = {{0, 0, 1, 2, 3}, {1u << 8 | 10, 1u << 8 | 60, 1u << 8 | 255}};
+  c.polygon_light = LightRows::from_dense(std::vector<float>{0.0f, 0.0f, 0.0f, 0.5f, 0.6f, 0.75f}, 2);
   c.circuits[1].compact_scale = 12.5f;
   c.circuits[1].light_form = LightForm::Compact;
   c.circuits[1].compact_error = 0.031f;
@@ -99,10 +101,15 @@ TEST_F(BundleTest, OptionalLightFormsRoundTrip) {
   const auto b = Bundle::open(path_);
   ASSERT_EQ(b->compact_colour().size(), 4u);
   EXPECT_EQ(b->compact_colour()[3][1], 180);
-  ASSERT_EQ(b->compact_intensity().size(), 8u);
-  EXPECT_EQ(b->compact_intensity()[7], 255);
-  ASSERT_EQ(b->polygon_light().size(), 6u);
-  EXPECT_FLOAT_EQ(b->polygon_light()[5], 0.75f);
+  ASSERT_EQ(b->compact_intensity().rows(), 4u);
+  EXPECT_TRUE(b->compact_intensity().row(0).empty());
+  ASSERT_EQ(b->compact_intensity().row(3).size(), 1u);
+  EXPECT_EQ(code_circuit(b->compact_intensity().row(3)[0]), 1u);
+  EXPECT_EQ(code_value(b->compact_intensity().row(3)[0]), 255);
+  ASSERT_EQ(b->polygon_light().rows(), 1u);
+  ASSERT_EQ(b->polygon_light().row(0).size(), 1u);  // circuit 0's zeros are left out
+  EXPECT_EQ(b->polygon_light().row(0)[0].circuit, 1u);
+  EXPECT_FLOAT_EQ(b->polygon_light().row(0)[0].rgb[2], 0.75f);
   EXPECT_FLOAT_EQ(b->circuits()[1].compact_scale, 12.5f);
   EXPECT_EQ(b->circuits()[1].light_form, LightForm::Compact);
   EXPECT_EQ(b->circuits()[0].light_form, LightForm::Full);
@@ -113,14 +120,24 @@ TEST_F(BundleTest, OptionalLightFormsRoundTrip) {
   write_bundle(path_, c);
   EXPECT_NE(open_error().find("CIRC 0 light form 7"), std::string::npos) << open_error();
   c.circuits[0].light_form = LightForm::Full;
+  const CompactCodes codes = c.compact_intensity;
   c.compact_colour.clear();
-  c.compact_intensity.clear();
+  c.compact_intensity = {};
   write_bundle(path_, c);
   EXPECT_NE(open_error().find("CIRC 1 is shown compact"), std::string::npos) << open_error();
   c.compact_colour.assign(4, {200, 180, 160, 255});
-  c.compact_intensity = {0, 10, 20, 30, 40, 50, 60};  // one short: refused, naming the section
+  c.compact_intensity = codes;
+  c.compact_intensity.first.pop_back();  // one row short: refused, naming the section
   write_bundle(path_, c);
-  EXPECT_NE(open_error().find("LINT"), std::string::npos);
+  EXPECT_NE(open_error().find("LINT has 3 rows"), std::string::npos) << open_error();
+  c.compact_intensity = codes;
+  c.compact_intensity.codes[0] = 0u << 8 | 10;  // a code of circuit 0, which is shown full
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LINT row 1 holds a code of circuit 0"), std::string::npos) << open_error();
+  c.compact_intensity = codes;
+  c.compact_intensity.codes[1] = 1u << 8;  // code 0: no light, which LINT leaves out
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("zero"), std::string::npos) << open_error();
 }
 
 TEST_F(BundleTest, CoarseFormRoundTripsAndStaysInsideItsPolygon) {
@@ -195,9 +212,27 @@ TEST_F(BundleTest, CrossReferencesAreValidated) {
   EXPECT_NE(open_error().find("PVS"), std::string::npos);
 
   c = small_bundle();
-  c.light[3] = -1.0f;
+  c.light.entries[3].rgb[0] = -1.0f;
   write_bundle(path_, c);
   EXPECT_NE(open_error().find("LGHT"), std::string::npos);
+
+  // Sparse rows that name a circuit twice, out of range, or do not span their entries.
+  c = small_bundle();
+  c.light.entries[1].circuit = 0;
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LGHT row 0 names circuit 0 out of order"), std::string::npos) << open_error();
+  c = small_bundle();
+  c.light.entries[1].circuit = 2;
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("out of range"), std::string::npos);
+  c = small_bundle();
+  c.light.first.back() = 7;
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LGHT row starts"), std::string::npos);
+  c = small_bundle();
+  c.light.first.pop_back();
+  write_bundle(path_, c);
+  EXPECT_NE(open_error().find("LGHT has 3 rows, expected 4"), std::string::npos) << open_error();
 
   c = small_bundle();
   c.nodes.push_back({{1, 0, 0, 0}, 0, -1});  // a node pointing at itself would loop forever

@@ -23,11 +23,12 @@ model::BundleContents warm_and_white() {
   scene.light_gradient = true;
   model::BundleContents c = make_two_rooms(scene);
   const std::size_t circuits = c.circuits.size();
-  for (std::size_t v = 0; v < c.vertices.size(); ++v) {
-    c.light[(v * circuits + 1) * 3 + 0] *= 3.0f;
-    c.light[(v * circuits + 1) * 3 + 2] *= 0.5f;
-  }
-  const auto chosen = compiler::choose_light_forms(c.light, c.vertices.size(), circuits);
+  for (model::LightEntry& e : c.light.entries)
+    if (e.circuit == 1) {
+      e.rgb[0] *= 3.0f;
+      e.rgb[2] *= 0.5f;
+    }
+  const auto chosen = compiler::choose_light_forms(c.light.view(), c.vertices.size(), circuits);
   c.compact_colour = chosen.colour;
   c.compact_intensity = chosen.intensity;
   for (std::size_t i = 0; i < circuits; ++i) {
@@ -84,7 +85,7 @@ TEST_P(CompactLightImageTest, CompiledFormsMatchTheFullFormWithinTheDisplaysStep
   EXPECT_EQ(full.gpu_bytes(), vertices * (8 + 2 * 16));
   // The sparse entries mix exactly as the dense arrays would.
   const std::vector<float> levels{0.7f, 0.3f};
-  const auto light = bundle->light();
+  const auto light = bundle->light().dense(2);
   for (std::size_t v = 0; v < vertices; ++v) {
     glm::vec3 dense(0.0f);
     for (std::size_t c = 0; c < 2; ++c)

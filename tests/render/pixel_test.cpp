@@ -178,13 +178,15 @@ TEST_P(PixelTest, ManyCircuitsMixOnlyTheCircuitsThatReachAVertex) {
   scene_.circuits = kMaxCircuits;
   model::BundleContents contents = make_two_rooms(scene_);
   const std::size_t n = std::size_t(kMaxCircuits), far_a = 37, far_b = 509;
+  std::vector<float> dense = contents.light.dense(n);
   for (std::size_t v = 0; v < contents.vertices.size(); ++v)
     for (int k = 0; k < 3; ++k) {
-      std::swap(contents.light[(v * n + 0) * 3 + k], contents.light[(v * n + far_a) * 3 + k]);
-      std::swap(contents.light[(v * n + 1) * 3 + k], contents.light[(v * n + far_b) * 3 + k]);
+      std::swap(dense[(v * n + 0) * 3 + k], dense[(v * n + far_a) * 3 + k]);
+      std::swap(dense[(v * n + 1) * 3 + k], dense[(v * n + far_b) * 3 + k]);
     }
   const std::size_t dark = contents.vertices.size() - 1;  // a vertex no circuit reaches
-  std::fill_n(contents.light.begin() + std::ptrdiff_t(dark * n * 3), n * 3, 0.0f);
+  std::fill_n(dense.begin() + std::ptrdiff_t(dark * n * 3), n * 3, 0.0f);
+  contents.light = model::LightRows::from_dense(dense, n);
   auto bundle = open_bundle(contents, "many_circuits");
   const DisplayLight light(*bundle, DisplayLightForm::AsCompiled);
   EXPECT_EQ(light.full_entries().size(), 2 * dark) << "two of 512 circuits a vertex";
@@ -192,8 +194,8 @@ TEST_P(PixelTest, ManyCircuitsMixOnlyTheCircuitsThatReachAVertex) {
   EXPECT_EQ(light.ranges()[dark - 1].full_first, 2 * (dark - 1));
   const std::vector<float> all_on(n, 1.0f);
   EXPECT_EQ(light.mixed(dark, all_on), glm::vec3(0.0f));
-  EXPECT_EQ(light.mixed(dark - 1, all_on)[2], contents.light[((dark - 1) * n + far_a) * 3 + 2] +
-                                                  contents.light[((dark - 1) * n + far_b) * 3 + 2]);
+  EXPECT_EQ(light.mixed(dark - 1, all_on)[2],
+            dense[((dark - 1) * n + far_a) * 3 + 2] + dense[((dark - 1) * n + far_b) * 3 + 2]);
   Renderer renderer(*bundle);
   std::vector<float> levels(n, 1.0f);
   levels[far_b] = 0.5f;

@@ -16,6 +16,7 @@ struct Builder {
   const TwoRooms& scene;
   model::BundleContents c;
   std::uint32_t group_a = 0, group_b = 1;
+  std::vector<float> light;  // [vertex][circuit][3], stored sparse in c.light once every rectangle is in
 
   // A rectangle corner, corner+u, corner+u+v, corner+v: counter-clockwise about u x v, its front side.
   std::uint32_t rect(glm::dvec3 corner, glm::dvec3 u, glm::dvec3 v, bool room_b, double factor,
@@ -52,7 +53,7 @@ struct Builder {
                                                      : 1.0;
         for (int ci = 0; ci < scene.circuits; ++ci)
           for (int k = 0; k < 3; ++k)
-            c.light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor * gradient) : 0.0f);
+            light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor * gradient) : 0.0f);
       }
     const std::uint32_t b = p.first_vertex, row = std::uint32_t(n + 1);
     for (std::uint32_t j = 0; j < std::uint32_t(n); ++j)
@@ -98,7 +99,7 @@ struct Builder {
 }  // namespace
 
 model::BundleContents make_two_rooms(const TwoRooms& scene) {
-  Builder b{scene, {}};
+  Builder b{scene, {}, 0, 1, {}};
   auto& c = b.c;
   c.materials.push_back(
       {{float(scene.albedo_a.x), float(scene.albedo_a.y), float(scene.albedo_a.z)}, c.add_string("room_a")});
@@ -113,6 +114,7 @@ model::BundleContents make_two_rooms(const TwoRooms& scene) {
          scene.glass_door ? model::Role::Glass : model::Role::Opening);
   b.room(4.0, true);
   const auto total = std::uint32_t(c.polygons.size());
+  c.light = model::LightRows::from_dense(b.light, std::size_t(scene.circuits));
 
   for (int i = 0; i < scene.circuits; ++i)
     c.circuits.push_back({c.add_string("circuit" + std::to_string(i)), 1.0f});
