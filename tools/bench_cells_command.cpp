@@ -59,8 +59,8 @@ Child run_child(const std::vector<std::string>& args, const std::string& log) {
   return out;
 }
 
-// The generated scene gives each room its own circuit; the light stage of M and L does not fit in memory
-// with that many (docs/CORPUS.md), and the cells stage does not depend on circuits, so all go on one.
+// The generated scene gives each room its own circuit; the cells stage does not depend on circuits, so all
+// go on one and the light stage the bench waits for stays as short as it can be.
 void one_circuit(const std::string& scene_path) {
   std::ifstream in(scene_path);
   std::stringstream text;
