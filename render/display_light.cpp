@@ -101,6 +101,15 @@ DisplayLight::DisplayLight(const model::Bundle& bundle, DisplayLightForm form) :
   polygon_first_.resize(bundle.polygons().size());
   for (std::size_t p = 0; p < polygon_first_.size(); ++p)
     polygon_first_[p] = append_lit(rows.row(p), every, polygon_entries_);
+  // The shader's level of a compact circuit is level x scale (shader_levels): its polygon light is stored
+  // divided by the scale, which is positive wherever the circuit has light.
+  std::vector<float> divisor(n, 1.0f);
+  for (const std::uint32_t c : compact_)
+    if (circuits[c].compact_scale > 0.0f) divisor[c] = circuits[c].compact_scale;
+  for (FullLightEntry& e : polygon_entries_) {
+    const float c = e.circuit >= kLastFullEntry ? e.circuit - kLastFullEntry : e.circuit;
+    for (float& x : e.rgb) x /= divisor[std::size_t(c)];
+  }
 }
 
 void DisplayLight::shader_levels(std::span<const float> levels, std::vector<float>& out) const {
@@ -123,12 +132,10 @@ glm::vec3 DisplayLight::mixed(std::size_t vertex, std::span<const float> levels)
   return sum + intensity * glm::vec3(colour[0], colour[1], colour[2]) / 255.0f;
 }
 
-void DisplayLight::polygon_mix(std::span<const float> levels, std::vector<float>& out) const {
-  out.assign(polygon_first_.size() * 3, 0.0f);
-  for (std::size_t p = 0; p < polygon_first_.size(); ++p) {
-    const glm::vec3 sum = sum_lit(polygon_entries_, polygon_first_[p], levels);
-    for (int k = 0; k < 3; ++k) out[p * 3 + k] = sum[k];
-  }
+glm::vec3 DisplayLight::polygon_mixed(std::size_t polygon, std::span<const float> levels) const {
+  std::vector<float> shader;
+  shader_levels(levels, shader);
+  return sum_lit(polygon_entries_, polygon_first_[polygon], shader);
 }
 
 std::size_t DisplayLight::gpu_bytes() const {

@@ -62,10 +62,14 @@ class DisplayLight {
   // The mixed radiosity at `vertex` for `levels` (circuit order), as the vertex shader computes it.
   [[nodiscard]] glm::vec3 mixed(std::size_t vertex, std::span<const float> levels) const;
 
-  // The coarse level's flat light, mixed on the CPU when the levels change: PLGT (or, where the bundle
-  // lacks it, each polygon's mean of its vertices), every circuit as floats, kept sparse like the vertices'.
-  // `out` becomes [polygon][3]. A dimmer turned while the viewer walks mixes it every frame.
-  void polygon_mix(std::span<const float> levels, std::vector<float>& out) const;
+  // The coarse level's flat light: PLGT (or, where the bundle lacks it, each polygon's mean of its
+  // vertices), every circuit as floats, kept sparse like the vertices' and mixed in the vertex shader the
+  // same way, so a dimmer turned while the viewer walks costs one uniform upload. The shader's levels carry a
+  // compact circuit's scale (shader_levels), so a compact circuit's polygon entries are stored divided by it.
+  [[nodiscard]] const std::vector<std::uint32_t>& polygon_first() const { return polygon_first_; }
+  [[nodiscard]] const std::vector<FullLightEntry>& polygon_entries() const { return polygon_entries_; }
+  // The coarse light of `polygon` for `levels` (circuit order), as the vertex shader mixes it.
+  [[nodiscard]] glm::vec3 polygon_mixed(std::size_t polygon, std::span<const float> levels) const;
 
   // Display memory of the light, and what LGHT alone would take.
   [[nodiscard]] std::size_t gpu_bytes() const;

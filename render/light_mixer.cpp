@@ -16,7 +16,8 @@ layout(location = 2) in uint a_polygon;
 layout(location = 3) in uvec2 a_light_first;  // first full entry, first compact entry (kNone: none)
 uniform mat4 u_view_projection;
 uniform samplerBuffer u_light;          // full entries: radiosity (rgb) and circuit (a)
-uniform samplerBuffer u_polygon_light;  // per polygon, already mixed (RGB): the coarse display while moving
+uniform samplerBuffer u_polygon_light;  // the polygons' full entries (the coarse display while moving)
+uniform usamplerBuffer u_polygon_first;  // per polygon, its first entry in u_polygon_light (kNone: none)
 uniform float u_patch_weight;           // 0: coarse, 1: patches, between: the blend after stopping
 uniform vec4 u_levels[128];             // per circuit (4 a vec4); a compact circuit's times its scale
 // Circuits shown compact (render/display_light.hpp): colour x sum(level x scale x the code's value,
@@ -34,17 +35,20 @@ const uint kMaxEntries = 512u;          // kMaxCircuits: a bound for the compile
 
 float level(uint circuit) { return u_levels[circuit >> 2u][circuit & 3u]; }
 
-vec3 mixed() {
+// Level x radiosity over a run of full entries from `first`, up to the one marked last.
+vec3 sum_full(samplerBuffer entries, uint first) {
   vec3 sum = vec3(0.0);
-  if (a_light_first.x == kNone) return sum;
-  for (uint i = a_light_first.x; i < a_light_first.x + kMaxEntries; ++i) {
-    vec4 entry = texelFetch(u_light, int(i));
+  if (first == kNone) return sum;
+  for (uint i = first; i < first + kMaxEntries; ++i) {
+    vec4 entry = texelFetch(entries, int(i));
     bool last = entry.a >= kLastFull;
     sum += level(uint(last ? entry.a - kLastFull : entry.a)) * entry.rgb;
     if (last) break;
   }
   return sum;
 }
+
+vec3 mixed() { return sum_full(u_light, a_light_first.x); }
 
 vec3 compact_mixed(int vertex) {
   if (a_light_first.y == kNone) return vec3(0.0);
@@ -61,10 +65,8 @@ void main() {
   // Each end skips the fetches it does not need: coarse frames read one polygon's values per vertex.
   vec3 fine = u_patch_weight > 0.0 ? mixed() + compact_mixed(gl_VertexID)
                                    : vec3(0.0);
-  // Three fetches instead of three per circuit: with 16 circuits the vertex stage is most of a frame.
-  int p = int(a_polygon) * 3;
-  vec3 coarse = u_patch_weight < 1.0 ? vec3(texelFetch(u_polygon_light, p).r, texelFetch(u_polygon_light, p + 1).r,
-                                            texelFetch(u_polygon_light, p + 2).r)
+  // The polygon's own circuits only, as a vertex's: a dimmer turned while walking is one uniform upload.
+  vec3 coarse = u_patch_weight < 1.0 ? sum_full(u_polygon_light, texelFetch(u_polygon_first, int(a_polygon)).r)
                                      : vec3(0.0);
   v_radiosity = a_albedo * u_ambient + mix(coarse, fine, u_patch_weight);
   gl_Position = u_view_projection * vec4(a_position, 1.0);

@@ -12,8 +12,8 @@ inline constexpr int kMaxCircuits = 512;
 // u_light: RGBA32F texture buffer of full entries (radiosity, circuit); u_compact_code: R32UI texture
 // buffer of compact entries (circuit << 8 | code) and u_compact_colour (RGBA8 per vertex); both mixed by
 // u_levels, indexed by circuit (a compact circuit's level times its scale).
-// u_polygon_light: PLGT already mixed by the dimmer levels on the CPU, [polygon][3], indexed by a_polygon;
-// u_patch_weight blends the two linearly. Output: v_radiosity, linear W/m2.
+// u_polygon_light (RGBA32F) and u_polygon_first (R32UI, per polygon, indexed by a_polygon): PLGT's entries,
+// mixed by u_levels the same way; u_patch_weight blends the two linearly. Output: v_radiosity, linear W/m2.
 extern const char* const kLightMixerVertexShader;
 
 }  // namespace walk::render

@@ -37,9 +37,11 @@ namespace walk::render {
 
 namespace {
 
-// Texture units of the compact light form (0: full light, 1: polygon light, 2 and 3: albedo maps).
+// Texture units of the compact light form and of the polygons' first entries (0: full light, 1: polygon
+// light, 2 and 3: albedo maps).
 constexpr int kCompactColourUnit = 4;
 constexpr int kCompactCodeUnit = 5;
+constexpr int kPolygonFirstUnit = 6;
 
 // A texture buffer of `format` over a new buffer object holding `bytes` of `data` (at least 4 bytes, so an
 // empty one is still a valid texture).
@@ -73,13 +75,14 @@ struct ScenePass {
         u_inv_exposure(program.uniform("u_inv_exposure")),
         u_opacity(program.uniform("u_opacity")),
         u_polygon_light(glGetUniformLocation(program.id(), "u_polygon_light")),
+        u_polygon_first(glGetUniformLocation(program.id(), "u_polygon_first")),
         u_compact_colour(glGetUniformLocation(program.id(), "u_compact_colour")),
         u_compact_code(glGetUniformLocation(program.id(), "u_compact_code")),
         u_patch_weight(program.uniform("u_patch_weight")),
         u_clip_plane(program.uniform("u_clip_plane")) {}
   ShaderProgram program;
   GLint u_view_projection, u_light, u_levels, u_ambient, u_inv_exposure, u_opacity, u_polygon_light,
-      u_compact_colour, u_compact_code, u_patch_weight, u_clip_plane;
+      u_polygon_first, u_compact_colour, u_compact_code, u_patch_weight, u_clip_plane;
 };
 
 struct Renderer::Impl {
@@ -97,8 +100,8 @@ struct Renderer::Impl {
   GLsizei shaded_vertices = 0;
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_vbo = 0,
          coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0,
-         compact_colour_buffer = 0, compact_colour_texture = 0, compact_code_buffer = 0,
-         compact_code_texture = 0, light_range_vbo = 0;
+         polygon_first_buffer = 0, polygon_first_texture = 0, compact_colour_buffer = 0,
+         compact_colour_texture = 0, compact_code_buffer = 0, compact_code_texture = 0, light_range_vbo = 0;
   DisplayLight display_light;
   std::vector<float> shader_levels;  // this frame's, as u_levels takes them (DisplayLight::shader_levels)
   // Both index forms laid out cluster by cluster (fine INDX; coarse CIDX, drawn with flat polygon light
@@ -118,11 +121,7 @@ struct Renderer::Impl {
   std::uint32_t cells_seen = 0;  // reached by that walk
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
-  // Coarse light (DisplayLight::polygon_mix) uploaded when the levels change, so the coarse vertex stage
-  // fetches 3 values instead of 3 per circuit.
-  std::vector<float> polygon_mix;                  // [polygon][3], reused from one mix to the next
-  std::vector<float> polygon_mixed_levels{-1.0f};  // levels of the mix in polygon_buffer; -1: none yet
-  void update_polygon_mix();
+
   std::vector<float> levels;
   std::optional<float> exposure_override;  // set_exposure: radiosity shown as white, instead of META's
   // Radiosity (W/m2) shown as white: the kiosk's override, else the bundle's, else 1.
@@ -171,6 +170,8 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &compact_code_buffer);
     glDeleteTextures(1, &polygon_texture);
     glDeleteBuffers(1, &polygon_buffer);
+    glDeleteTextures(1, &polygon_first_texture);
+    glDeleteBuffers(1, &polygon_first_buffer);
     glDeleteBuffers(1, &light_range_vbo);
     glDeleteTextures(1, &light_texture);
     glDeleteBuffers(1, &light_buffer);
@@ -462,14 +463,14 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
     upload_texture_buffer(r.compact_colour_buffer, r.compact_colour_texture, GL_RGBA8,
                           compact ? colours.data() : nullptr, compact ? colours.size_bytes() : 0);
   }
-  glGenBuffers(1, &r.polygon_buffer);
-  glBindBuffer(GL_TEXTURE_BUFFER, r.polygon_buffer);
-  glBufferData(GL_TEXTURE_BUFFER,
-               GLsizeiptr(std::max<std::size_t>(bundle.polygons().size() * 3 * sizeof(float), 4)), nullptr,
-               GL_DYNAMIC_DRAW);
-  glGenTextures(1, &r.polygon_texture);
-  glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, r.polygon_buffer);
+  {
+    const auto& entries = r.display_light.polygon_entries();
+    const auto& first = r.display_light.polygon_first();
+    upload_texture_buffer(r.polygon_buffer, r.polygon_texture, GL_RGBA32F, entries.data(),
+                          entries.size() * sizeof(FullLightEntry));
+    upload_texture_buffer(r.polygon_first_buffer, r.polygon_first_texture, GL_R32UI, first.data(),
+                          first.size() * sizeof(std::uint32_t));
+  }
   glBindTexture(GL_TEXTURE_BUFFER, 0);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   if (!bundle.textures().empty()) {
@@ -666,7 +667,6 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glDisable(GL_CULL_FACE);
   }
 
-  if (options.patch_weight < 1.0f || map_overlay) update_polygon_mix();
   if (!list.opaque.empty() || !list.glass.empty()) {
     const auto& meta = r.bundle.meta();
     r.pass = r.flat_pass && options.patch_weight <= 0.0f ? &*r.flat_pass : &r.full_pass;
@@ -687,6 +687,9 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
     if (pass.u_polygon_light >= 0) glUniform1i(pass.u_polygon_light, 1);
+    glActiveTexture(GL_TEXTURE0 + kPolygonFirstUnit);
+    glBindTexture(GL_TEXTURE_BUFFER, r.polygon_first_texture);
+    if (pass.u_polygon_first >= 0) glUniform1i(pass.u_polygon_first, kPolygonFirstUnit);
     glActiveTexture(GL_TEXTURE0 + kCompactColourUnit);
     glBindTexture(GL_TEXTURE_BUFFER, r.compact_colour_texture);
     if (pass.u_compact_colour >= 0) glUniform1i(pass.u_compact_colour, kCompactColourUnit);
@@ -722,7 +725,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     }
     if (r.map_overlay) r.draw_map(view, width, height);
     glBindVertexArray(0);
-    for (const int unit : {kCompactCodeUnit, kCompactColourUnit, 1, 0}) {
+    for (const int unit : {kPolygonFirstUnit, kCompactCodeUnit, kCompactColourUnit, 1, 0}) {
       glActiveTexture(GLenum(GL_TEXTURE0 + unit));
       glBindTexture(GL_TEXTURE_BUFFER, 0);
     }
@@ -746,15 +749,6 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
   r.stats.resolution = reduced ? std::max(0.1f, options.resolution) : 1.0f;
   ++r.stats.frames_drawn;
-}
-
-void Renderer::Impl::update_polygon_mix() {
-  if (polygon_mixed_levels == levels) return;
-  display_light.polygon_mix(levels, polygon_mix);
-  glBindBuffer(GL_TEXTURE_BUFFER, polygon_buffer);
-  glBufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(polygon_mix.size() * sizeof(float)), polygon_mix.data());
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
-  polygon_mixed_levels = levels;
 }
 
 void Renderer::Impl::make_shaded_program() {

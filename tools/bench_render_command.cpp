@@ -406,8 +406,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
                     0,
                     0,
                     {},
-                    fmt::format("coarse with the {} circuits' levels changed each frame (mixed on the CPU)",
-                                levels.size())});
+                    fmt::format("coarse with the {} circuits' levels changed each frame", levels.size())});
     }
     {
       // The floor under every level: a frame with nothing in view (clear, blit and finish), and the same

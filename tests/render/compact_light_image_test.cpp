@@ -135,6 +135,36 @@ TEST_P(CompactLightImageTest, TheShaderReadsTheCompactForm) {
   EXPECT_EQ(largest_difference(frame(full_a, {1.0f, 0.0f}), frame(full_b, {1.0f, 0.0f})), 0);
 }
 
+// The coarse level mixes each polygon's own circuits in the vertex shader, as the patches do, so a dimmer
+// turned while walking is one uniform upload. Its light holds every circuit as floats while the shader's
+// level of a compact circuit carries the circuit's scale: the compact circuit's polygon light is stored
+// divided by it, and both forms draw the same coarse frame.
+TEST_P(CompactLightImageTest, TheCoarseLevelMixesInTheShaderWhateverTheForm) {
+  const auto bundle = open_bundle(warm_and_white(), "compact_coarse");
+  const DisplayLight as_compiled(*bundle, DisplayLightForm::AsCompiled),
+      full(*bundle, DisplayLightForm::Full);
+  ASSERT_FALSE(as_compiled.compact_circuits().empty());
+  Renderer compiled_renderer(*bundle), full_renderer(*bundle, DisplayLightForm::Full);
+  auto coarse = [&](Renderer& renderer, const std::vector<float>& levels) {
+    renderer.set_dimmers(levels);
+    renderer.draw(both_rooms(), kWidth, kHeight, DrawOptions{.patch_weight = 0.0f});
+    return renderer.read_pixels(kWidth, kHeight);
+  };
+  for (const std::vector<float>& levels : {std::vector<float>{1.0f, 1.0f}, {0.25f, 1.0f}, {1.0f, 0.0f}}) {
+    for (std::size_t p = 0; p < bundle->polygons().size(); ++p) {
+      const glm::vec3 a = as_compiled.polygon_mixed(p, levels), b = full.polygon_mixed(p, levels);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(a[k], b[k], 1e-5f * std::max(1.0f, b[k])) << "polygon " << p;  // float division
+      }
+    }
+    EXPECT_LE(largest_difference(coarse(compiled_renderer, levels), coarse(full_renderer, levels)), 1);
+  }
+  // And the levels reach it: circuit 0 off darkens the coarse frame.
+  EXPECT_GT(
+      largest_difference(coarse(compiled_renderer, {1.0f, 1.0f}), coarse(compiled_renderer, {0.0f, 1.0f})),
+      5);
+}
+
 INSTANTIATE_TEST_SUITE_P(Headless, CompactLightImageTest,
                          ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });

@@ -208,7 +208,7 @@ TEST_P(PixelTest, ManyCircuitsMixOnlyTheCircuitsThatReachAVertex) {
   const Image dimmed = render(*bundle, looking_along_x(+1.0), &renderer);
   expect_colour(centre(dimmed), radiosity(scene_, true, scene_.wall_factor, 0, 0.5), scene_.exposure,
                 "circuit 37 off too");
-  // The coarse level's flat polygon light (mixed on the CPU from each polygon's own circuits) agrees.
+  // The coarse level's flat polygon light (mixed in the shader from each polygon's own circuits) agrees.
   renderer.draw(looking_along_x(+1.0), kWidth, kHeight, DrawOptions{.patch_weight = 0.0f});
   expect_colour(centre(renderer.read_pixels(kWidth, kHeight)),
                 radiosity(scene_, true, scene_.wall_factor, 0, 0.5), scene_.exposure, "coarse level");
