@@ -36,7 +36,7 @@ struct LightRefinementStats {
 // Refines `meshes[i]` for i where `lit[i]` (panels and the like are left alone); `occluders` cast the
 // shadows. Orientation is kept; a split triangle keeps its place with one piece, the others go to the end.
 // `direct` (optional) receives, per mesh, the direct light gathered at each vertex of the refined mesh,
-// [vertex][circuit][3] for a surface of reflectance 1 (empty for meshes not lit), so the light stage shows
+// a row per vertex, for a surface of reflectance 1 (no rows for meshes not lit), so the light stage shows
 // the very values the edges were tested with instead of gathering them again.
 LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, const std::vector<bool>& lit,
                                             const std::vector<model::Luminaire>& luminaires,

@@ -189,7 +189,7 @@ class LightStage final : public Stage {
     return out;
   }
 
-  // Direct light at every lit vertex (panels glow, so theirs stay 0), [vertex][circuit][channel]: the light
+  // Direct light at every lit vertex (panels glow, so their rows stay empty), a row per vertex: the light
   // refinement's where it gathered it (the values its edges were tested with), gathered here for the rest.
   // `refined`: how many vertices took the refinement's.
   static SparseLight gather_vertex_direct(CompileState& s, DirectLightStats* stats, std::size_t& refined) {
@@ -262,7 +262,7 @@ class LightStage final : public Stage {
     return lost.load();
   }
 
-  // Direct light at each patch's centroid (panels glow, so theirs stay 0), [patch][circuit][channel].
+  // Direct light at each patch's centroid (panels glow, so their rows stay empty), a row per patch.
   static SparseLight gather_patch_direct(CompileState& s, DirectLightStats* stats) {
     std::vector<std::uint8_t> panel(s.out.polygons.size(), 0);
     for (const auto& [polygon, luminaire] : s.panel_polygons) panel[polygon] = 1;
