@@ -97,24 +97,37 @@ std::uint32_t BundleContents::add_string(std::string_view s) {
   return offset;
 }
 
-// `what`'s rows: none, or `expected` rows whose starts climb to the entry count, each listing valid circuits
-// in increasing order with finite, non-negative radiosity.
-void Bundle::validate_light_rows(const LightRowsView& rows, std::size_t expected, const char* what) const {
-  const std::string name(what);
+// Sparse rows' starts (LGHR, PLGR, LINR over `entries` records of `name`): none (and no entries), or
+// `expected` rows whose starts climb from 0 to the entry count. False where there are no rows.
+bool Bundle::validate_row_starts(std::span<const std::uint32_t> first, std::size_t entries,
+                                 std::size_t expected, const std::string& name) const {
   const auto fail = [&](const std::string& problem) {
     throw Error(
         located(path_, 0, "corrupt bundle: " + name + " " + problem, "recompile it with `walk compile`"));
   };
-  if (rows.first.empty()) {
-    if (!rows.entries.empty()) fail("has entries but no row starts");
-    return;
+  if (first.empty()) {
+    if (entries != 0) fail("has entries but no row starts");
+    return false;
   }
-  if (rows.rows() != expected)
-    fail("has " + std::to_string(rows.rows()) + " rows, expected " + std::to_string(expected));
-  if (rows.first.front() != 0 || rows.first.back() != rows.entries.size())
-    fail("row starts do not span its " + std::to_string(rows.entries.size()) + " entries");
+  if (first.size() - 1 != expected)
+    fail("has " + std::to_string(first.size() - 1) + " rows, expected " + std::to_string(expected));
+  if (first.front() != 0 || first.back() != entries)
+    fail("row starts do not span its " + std::to_string(entries) + " entries");
+  for (std::size_t r = 0; r + 1 < first.size(); ++r)
+    if (first[r + 1] < first[r]) fail("row " + std::to_string(r) + " ends before it starts");
+  return true;
+}
+
+// `what`'s rows: none, or `expected` rows, each listing valid circuits in increasing order with finite,
+// non-negative radiosity.
+void Bundle::validate_light_rows(const LightRowsView& rows, std::size_t expected, const char* what) const {
+  const std::string name(what);
+  if (!validate_row_starts(rows.first, rows.entries.size(), expected, name)) return;
+  const auto fail = [&](const std::string& problem) {
+    throw Error(
+        located(path_, 0, "corrupt bundle: " + name + " " + problem, "recompile it with `walk compile`"));
+  };
   for (std::size_t r = 0; r < rows.rows(); ++r) {
-    if (rows.first[r + 1] < rows.first[r]) fail("row " + std::to_string(r) + " ends before it starts");
     std::uint32_t next = 0;
     for (const LightEntry& e : rows.row(r)) {
       if (e.circuit < next || e.circuit >= circuits_.size())
@@ -130,28 +143,19 @@ void Bundle::validate_light_rows(const LightRowsView& rows, std::size_t expected
 // LINT's rows: none, or one per vertex, each naming circuits shown compact in increasing order with a
 // non-zero code.
 void Bundle::validate_compact_codes() const {
-  const auto fail = [&](const std::string& problem) {
-    throw Error(located(path_, 0, "corrupt bundle: LINT " + problem, "recompile it with `walk compile`"));
-  };
   const CompactCodesView& rows = compact_intensity_;
-  if (rows.first.empty()) {
-    if (!rows.codes.empty()) fail("has codes but no row starts");
-    return;
-  }
-  if (rows.rows() != vertices_.size())
-    fail("has " + std::to_string(rows.rows()) + " rows, expected one per vertex (" +
-         std::to_string(vertices_.size()) + ")");
-  if (rows.first.front() != 0 || rows.first.back() != rows.codes.size())
-    fail("row starts do not span its " + std::to_string(rows.codes.size()) + " codes");
+  if (!validate_row_starts(rows.first, rows.codes.size(), vertices_.size(), "LINT")) return;
   for (std::size_t r = 0; r < rows.rows(); ++r) {
-    if (rows.first[r + 1] < rows.first[r]) fail("row " + std::to_string(r) + " ends before it starts");
     std::uint32_t next = 0;
     for (const std::uint32_t e : rows.row(r)) {
       const std::uint32_t c = code_circuit(e);
       if (c < next || c >= circuits_.size() || code_value(e) == 0 ||
           circuits_[c].light_form != LightForm::Compact)
-        fail("row " + std::to_string(r) + " holds a code of circuit " + std::to_string(c) +
-             " out of order, out of range, zero, or of a circuit not shown compact");
+        throw Error(located(path_, 0,
+                            "corrupt bundle: LINT row " + std::to_string(r) + " holds a code of circuit " +
+                                std::to_string(c) +
+                                " out of order, out of range, zero, or of a circuit not shown compact",
+                            "recompile it with `walk compile`"));
       next = c + 1;
     }
   }

@@ -125,6 +125,8 @@ class Bundle {
   void validate();
   void validate_textures() const;
   void validate_luminaire_shapes() const;
+  bool validate_row_starts(std::span<const std::uint32_t> first, std::size_t entries, std::size_t expected,
+                           const std::string& name) const;
   void validate_light_rows(const LightRowsView& rows, std::size_t expected, const char* what) const;
   void validate_compact_codes() const;
 

@@ -34,12 +34,9 @@ glm::vec3 sum_lit(const std::vector<FullLightEntry>& entries, std::uint32_t firs
   return sum;
 }
 
-// PLGT when the bundle has it; otherwise each polygon's plain mean of its vertices' light, so the coarse
-// level always exists.
-model::LightRows polygon_light(const model::Bundle& bundle) {
-  const auto plgt = bundle.polygon_light();
-  if (plgt.rows() == bundle.polygons().size())
-    return {{plgt.first.begin(), plgt.first.end()}, {plgt.entries.begin(), plgt.entries.end()}};
+// Where the bundle lacks PLGT: each polygon's plain mean of its vertices' light, so the coarse level always
+// exists.
+model::LightRows mean_vertex_light(const model::Bundle& bundle) {
   model::LightRows out;
   const auto light = bundle.light();
   std::vector<float> sum(bundle.circuits().size() * 3, 0.0f);
@@ -97,7 +94,10 @@ DisplayLight::DisplayLight(const model::Bundle& bundle, DisplayLightForm form) :
   }
   // The coarse level's light has every circuit as floats, compact ones included.
   const std::vector<char> every(n, 1);
-  const model::LightRows rows = polygon_light(bundle);
+  model::LightRows means;
+  const model::LightRowsView rows = bundle.polygon_light().rows() == bundle.polygons().size()
+                                        ? bundle.polygon_light()
+                                        : (means = mean_vertex_light(bundle)).view();
   polygon_first_.resize(bundle.polygons().size());
   for (std::size_t p = 0; p < polygon_first_.size(); ++p)
     polygon_first_[p] = append_lit(rows.row(p), every, polygon_entries_);
