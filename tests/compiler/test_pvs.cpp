@@ -133,18 +133,22 @@ TEST(Pvs, FlowPastItsBudgetTakesWhatItsPortalsMightSee) {
 
 // Past its budget a flow finds the cells by a flow over cells alone and tests the items of each by portal
 // pairs: still conservative, and a box in a reached room that no line through both doors meets stays out
-// (taking every cell the portals might see, whole, put it in).
+// (taking every cell the portals might see, whole, put it in). The far room has two doors: the flow over
+// items goes through both (the box in it is never seen, so the room is never done), the flow over cells
+// only through the first (the room is reached), so the one runs past a budget of two steps and the other
+// ends within it.
 TEST(Pvs, FlowPastItsBudgetTestsItemsByPortalPairs) {
   MiniBuilding m;
   m.row_shell(12.0);
   m.rect_with_hole(0, 4.0, 0, 4, 0, 3, 0.2, 1.0, 0.0, 2.0);  // doors at opposite ends of their walls
-  m.rect_with_hole(0, 8.0, 0, 4, 0, 3, 3.0, 3.8, 0.0, 2.0);
+  m.rect_with_hole(0, 8.0, 0, 3, 0, 3, 2.0, 2.6, 0.0, 2.0);
+  m.rect_with_hole(0, 8.0, 3, 4, 0, 3, 3.0, 3.8, 0.0, 2.0);
   const auto first_box = static_cast<std::uint32_t>(m.b.polygons.size());
   m.room({11.0, 0.1, 0.0}, {11.5, 0.5, 0.5});  // in the far room's corner, behind the second door's wall
   VisibilityConfig config = test_config(PvsMethod::Combined);
   config.proof_pairs = 0;  // the flow alone
   const VisibilityResult full = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
-  config.flow_budget = 1;
+  config.flow_budget = 2;
   const VisibilityResult cut = compute_visibility(m.b.vertices, m.b.indices, m.b.polygons, config);
   ASSERT_EQ(cut.partition.cells.size(), 3u);
   EXPECT_EQ(full.flow_fallbacks, 0u);
