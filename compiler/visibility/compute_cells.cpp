@@ -56,9 +56,29 @@ void prove_hidden(VisibilityResult& r, std::vector<std::vector<std::uint32_t>>& 
                   const std::vector<std::vector<std::uint32_t>>& sampled, const Partition& part,
                   const PortalGraph& graph, const RayCaster& caster, const VisibilityConfig& config) {
   const HiddenProver prover(r.polygons, caster, config.cull_back_faces);
-  ProofOptions options{config.proof_pairs, ProofOptions{}.max_depth, config.cull_back_faces};
-  ProofOptions cluster_options = options;
-  cluster_options.max_pairs = std::min(config.proof_pairs, kClusterProofPairs);
+  const ProofOptions options{config.proof_pairs, ProofOptions{}.max_depth, config.cull_back_faces};
+  const int least_pairs = std::min(config.proof_pairs, kClusterProofPairs);
+  auto to_try = [&](std::size_t c, std::uint32_t p) {
+    return !std::binary_search(sampled[c].begin(), sampled[c].end(), p);
+  };
+  // Per cell, the mean triangles of the items its proofs try (0: none).
+  std::vector<double> mean_triangles(pvs.size(), 0.0);
+  for (std::size_t c = 0; c < pvs.size(); ++c) {
+    double triangles = 0.0, items = 0.0;
+    for (const auto p : pvs[c])
+      if (to_try(c, p)) {
+        triangles += double(r.polygons[p].triangles.size());
+        items += 1.0;
+      }
+    if (items > 0.0) mean_triangles[c] = triangles / items;
+  }
+  // An item's allowance follows the triangles hiding it takes out of the cell's draw (proof_allowance): on M,
+  // 88 % of the walls proven hidden took 32 pairs or fewer, while 128 k walls of 72 triangles each spent
+  // 244 pairs each on average to stay undecided, 68 % of all the pairs.
+  auto allowance = [&](std::size_t c, std::uint32_t p) {
+    return proof_allowance(r.polygons[p].triangles.size(), mean_triangles[c], r.polygons[p].detail,
+                           config.proof_pairs, least_pairs);
+  };
   // The whole proof's work before any of it: each item to try (in the PVS, seen by no sample) may take its
   // allowance of pairs. Above the model's budget every allowance shrinks in proportion, with a warning: an
   // item undecided when its pairs run out stays in the PVS, so the cap costs tightness, never a missed pixel,
@@ -66,24 +86,21 @@ void prove_hidden(VisibilityResult& r, std::vector<std::vector<std::uint32_t>>& 
   double wanted = 0.0;
   for (std::size_t c = 0; c < pvs.size(); ++c)
     for (const auto p : pvs[c])
-      if (!std::binary_search(sampled[c].begin(), sampled[c].end(), p))
-        wanted += (r.polygons[p].detail ? cluster_options : options).max_pairs;
+      if (to_try(c, p)) wanted += allowance(c, p);
   r.proof_pairs_wanted = wanted;
   spdlog::debug("visibility: proofs may try up to {:.3g} pairs (budget {:.3g})", wanted,
                 config.proof_pair_budget);
+  double scale = 1.0;
+  auto scaled = [&](int pairs) { return std::max(1, static_cast<int>(pairs * scale)); };
   if (wanted > config.proof_pair_budget) {
-    const double scale = config.proof_pair_budget / wanted;
-    options.max_pairs = std::max(1, static_cast<int>(options.max_pairs * scale));
-    cluster_options.max_pairs = std::max(1, static_cast<int>(cluster_options.max_pairs * scale));
-    r.proof_pairs_capped = options.max_pairs;
+    scale = config.proof_pair_budget / wanted;
+    r.proof_pairs_capped = scaled(config.proof_pairs);
     spdlog::warn(
         "{}: [visibility] proof_pairs = {} would let the hidden-item proofs try up to {:.3g} pairs, above "
-        "the "
-        "budget of {:.3g}: each item gets {} pairs (clusters {}); items left undecided stay in the PVS. "
-        "Lower "
-        "proof_pairs to {} or less to choose yourself",
-        config.source, config.proof_pairs, wanted, config.proof_pair_budget, options.max_pairs,
-        cluster_options.max_pairs, options.max_pairs);
+        "the budget of {:.3g}: each item gets at most {} pairs (clusters {}); items left undecided stay in "
+        "the PVS. Lower proof_pairs to {} or less to choose yourself",
+        config.source, config.proof_pairs, wanted, config.proof_pair_budget, r.proof_pairs_capped,
+        scaled(least_pairs), r.proof_pairs_capped);
   }
   std::vector<ProofStats> stats(pvs.size());
   Progress progress("cells: hidden proofs", pvs.size(), "cells");
@@ -96,8 +113,9 @@ void prove_hidden(VisibilityResult& r, std::vector<std::vector<std::uint32_t>>& 
       exits.push_back({portal.hull, portal.out_of(static_cast<std::uint32_t>(c))});
     }
     std::erase_if(pvs[c], [&](std::uint32_t p) {
-      if (std::binary_search(sampled[c].begin(), sampled[c].end(), p)) return false;
-      const ProofOptions& o = r.polygons[p].detail ? cluster_options : options;
+      if (!to_try(c, p)) return false;
+      ProofOptions o = options;
+      o.max_pairs = scaled(allowance(c, p));
       return prover.prove(box, exits, p, o, &stats[c]) == Verdict::Hidden;
     });
     progress.advance();

@@ -40,6 +40,16 @@ int longest_axis(const model::Vec3& size) {
 
 }  // namespace
 
+int proof_allowance(std::size_t triangles, double mean_triangles, bool cluster, int proof_pairs,
+                    int least_pairs) {
+  const int most = std::max(0, proof_pairs);
+  const int least = std::clamp(least_pairs, 0, most);
+  if (cluster) return least;
+  if (!(mean_triangles > 0.0)) return most;  // also NaN
+  const double share = std::min(1.0, double(triangles) / mean_triangles);
+  return std::clamp(static_cast<int>(std::lround(most * share)), least, most);
+}
+
 HiddenProver::HiddenProver(const std::vector<VisPolygon>& polygons, const RayCaster& caster,
                            bool cull_back_faces)
     : polygons_(polygons),

@@ -49,6 +49,13 @@ struct ProofStats {
   }
 };
 
+// The pairs one item's proof may take, after what hiding it is worth (the triangles it takes out of the
+// cell's draw): `proof_pairs` for an item of at least `mean_triangles` (the mean over the items the cell's
+// proofs try; none known counts as the full allowance), in proportion below that, never under
+// `least_pairs`; a detail cluster gets `least_pairs`. Never over `proof_pairs`, never negative.
+[[nodiscard]] int proof_allowance(std::size_t triangles, double mean_triangles, bool cluster, int proof_pairs,
+                                  int least_pairs);
+
 class HiddenProver {
  public:
   // `caster` holds the polygons' triangles, each carrying its polygon's index.

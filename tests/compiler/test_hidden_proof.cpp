@@ -2,6 +2,7 @@
 // degenerate contacts, and proofs through a corner where two walls meet, checked against random sight lines.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <memory>
 #include <random>
@@ -263,6 +264,27 @@ TEST(HiddenProver, ADetailClusterIsProvenHiddenByItsBoxFaces) {
   ProofStats stats;
   EXPECT_EQ(open_prover.prove_from_box(open.viewer, open.target, o, &stats), Verdict::Visible);
   EXPECT_LE(stats.pairs, 2u);
+}
+
+TEST(ProofAllowance, FollowsTheTrianglesBetweenTheFloorAndTheCap) {
+  EXPECT_EQ(proof_allowance(100, 50.0, false, 256, 32), 256) << "larger than the cell's mean item";
+  EXPECT_EQ(proof_allowance(50, 50.0, false, 256, 32), 256) << "the mean item";
+  EXPECT_EQ(proof_allowance(25, 50.0, false, 256, 32), 128) << "half the mean";
+  EXPECT_EQ(proof_allowance(1, 50.0, false, 256, 32), 32) << "never under the floor";
+  EXPECT_EQ(proof_allowance(1000, 50.0, true, 256, 32), 32) << "a cluster, whatever its triangles";
+}
+
+TEST(ProofAllowance, DegenerateInputs) {
+  EXPECT_EQ(proof_allowance(0, 50.0, false, 256, 32), 32) << "no triangles";
+  EXPECT_EQ(proof_allowance(10, 0.0, false, 256, 32), 256) << "no mean known";
+  EXPECT_EQ(proof_allowance(10, -1.0, false, 256, 32), 256);
+  EXPECT_EQ(proof_allowance(10, std::nan(""), false, 256, 32), 256);
+  EXPECT_EQ(proof_allowance(10, 50.0, false, 16, 32), 16) << "a floor above the cap is the cap";
+  EXPECT_EQ(proof_allowance(10, 50.0, true, 16, 32), 16);
+  EXPECT_EQ(proof_allowance(10, 50.0, false, 0, 32), 0) << "no proofs";
+  EXPECT_EQ(proof_allowance(10, 50.0, true, 0, 32), 0);
+  EXPECT_EQ(proof_allowance(10, 50.0, false, -5, 32), 0) << "never negative";
+  EXPECT_EQ(proof_allowance(10, 50.0, false, 256, -3), 51) << "a negative floor is none";
 }
 
 }  // namespace
