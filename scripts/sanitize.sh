@@ -20,7 +20,7 @@ configure() {  # folder sanitizers [extra cmake args]
   local dir=$1 sanitizers=$2
   shift 2
   cmake -S "$source_dir" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWALK_SANITIZE="$sanitizers" \
-    -DWALK_HARDENING=OFF "$@" >/dev/null
+    -DWALK_HARDENING=OFF -DWALK_DEBUG_INFO=lines "$@" >/dev/null  # reports need file:line only
 }
 
 case $mode in
