@@ -27,8 +27,8 @@ bool barycentric(const model::Vec3& p, const model::Vec3& a, const model::Vec3& 
 
 }  // namespace
 
-std::vector<Probe> make_probes(const ShadedMesh& mesh, double per_square_metre) {
-  std::vector<Probe> out;
+std::vector<ErrorProbe> make_probes(const ShadedMesh& mesh, double per_square_metre) {
+  std::vector<ErrorProbe> out;
   SplitMix rng(0x5eedULL);
   for (std::uint32_t poly = 0; poly < mesh.polygon_triangles.size(); ++poly) {
     const auto& tris = mesh.polygon_triangles[poly];
@@ -54,7 +54,7 @@ std::vector<Probe> make_probes(const ShadedMesh& mesh, double per_square_metre) 
   return out;
 }
 
-std::vector<double> evaluate(const ShadedMesh& mesh, const std::vector<Probe>& probes) {
+std::vector<double> evaluate(const ShadedMesh& mesh, const std::vector<ErrorProbe>& probes) {
   std::vector<double> out(probes.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 0; k < probes.size(); ++k) {
     const auto& tris = mesh.polygon_triangles[probes[k].polygon];

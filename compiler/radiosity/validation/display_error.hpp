@@ -16,17 +16,17 @@ struct ShadedMesh {
   std::vector<std::vector<std::uint32_t>> polygon_triangles;  // per polygon: vertex indices, 3 per triangle
 };
 
-struct Probe {
+struct ErrorProbe {  // a point where the display's error is measured
   std::uint32_t polygon;
   model::Vec3 position;
 };
 
 // Probes spread uniformly by area over each polygon of `mesh`, `per_square_metre` of them (at least one per
 // polygon), from a fixed seed.
-[[nodiscard]] std::vector<Probe> make_probes(const ShadedMesh& mesh, double per_square_metre);
+[[nodiscard]] std::vector<ErrorProbe> make_probes(const ShadedMesh& mesh, double per_square_metre);
 
 // Interpolated value at each probe (NaN where no triangle of the probe's polygon contains it).
-[[nodiscard]] std::vector<double> evaluate(const ShadedMesh& mesh, const std::vector<Probe>& probes);
+[[nodiscard]] std::vector<double> evaluate(const ShadedMesh& mesh, const std::vector<ErrorProbe>& probes);
 
 struct DisplayError {
   double rms = 0.0;  // root mean square of (value - reference) over probes, in units of the reference mean
