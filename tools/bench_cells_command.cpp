@@ -30,7 +30,7 @@
 extern char** environ;
 
 namespace walk::tools {
-namespace {
+namespace bench_cells_command {  // named: walk compiles its commands as one unit
 
 struct Child {
   int status = -1;
@@ -143,9 +143,10 @@ int run_bench(const std::vector<std::string>& sizes, const std::string& work, un
   return 0;
 }
 
-}  // namespace
+}  // namespace bench_cells_command
 
 void add_bench_cells_command(CLI::App& bench, int& exit_code) {
+  using namespace bench_cells_command;
   struct Args {
     std::vector<std::string> sizes{"S", "M"};
     std::string work = "bench-cells";

@@ -22,7 +22,7 @@
 #include "tools/gnuplot.hpp"
 
 namespace walk::tools {
-namespace {
+namespace bench_lighting_command {  // named: walk compiles its commands as one unit
 
 namespace fs = std::filesystem;
 
@@ -178,9 +178,10 @@ int run(const Args& a) {
   return 0;
 }
 
-}  // namespace
+}  // namespace bench_lighting_command
 
 void add_bench_lighting_command(CLI::App& bench, int& exit_code) {
+  using namespace bench_lighting_command;
   auto args = std::make_shared<Args>();
   auto* cmd = bench.add_subcommand(
       "lighting",

@@ -19,7 +19,7 @@
 #include "tools/gnuplot.hpp"
 
 namespace walk::tools {
-namespace {
+namespace bench_radiosity_command {  // named: walk compiles its commands as one unit
 
 using compiler::ShadedMesh;
 
@@ -169,9 +169,10 @@ int run_bench(const std::string& which, bool quick, unsigned threads, const std:
   return 0;
 }
 
-}  // namespace
+}  // namespace bench_radiosity_command
 
 void add_bench_radiosity_command(CLI::App& bench, int& exit_code) {
+  using namespace bench_radiosity_command;
   struct Args {
     std::string scene = "all", plot;
     // Defaults point into the source tree this binary was built from (a developer tool, not installed).

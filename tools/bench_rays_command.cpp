@@ -19,7 +19,7 @@
 #include "tools/commands.hpp"
 
 namespace walk::tools {
-namespace {
+namespace bench_rays_command {  // named: walk compiles its commands as one unit
 
 using compiler::Ray;
 using compiler::RayCaster;
@@ -192,9 +192,10 @@ int run_leak(const Options& opt) {
   return 0;
 }
 
-}  // namespace
+}  // namespace bench_rays_command
 
 void add_bench_rays_command(CLI::App& bench, int& exit_code) {
+  using namespace bench_rays_command;
   auto opt = std::make_shared<Options>();
   if (const char* env = std::getenv("WALK_SHARED_DATA"))
     opt->data = env;

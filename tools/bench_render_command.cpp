@@ -28,7 +28,7 @@
 #include "tools/gnuplot.hpp"
 
 namespace walk::tools {
-namespace {
+namespace bench_render_command {  // named: walk compiles its commands as one unit
 
 using Clock = std::chrono::steady_clock;
 
@@ -555,9 +555,10 @@ int run(const Options& o) {
   return 0;
 }
 
-}  // namespace
+}  // namespace bench_render_command
 
 void add_bench_render_command(CLI::App& bench, int& exit_code) {
+  using namespace bench_render_command;
   auto o = std::make_shared<Options>();
   auto* cmd =
       bench.add_subcommand("render", "Frame times culled/unculled, governor, refinement and AA costs (CSV)");

@@ -16,7 +16,7 @@
 #include "tools/gen/scene_writer.hpp"
 
 namespace walk::tools {
-namespace {
+namespace gen_command {  // named: walk compiles its commands as one unit
 
 // The conference room's file units: its copyright.txt says "Scale by 0.003 to get meters".
 constexpr double kConferenceScale = 0.003;
@@ -76,9 +76,10 @@ int run_gen(const GenOptions& o) {
   return 0;
 }
 
-}  // namespace
+}  // namespace gen_command
 
 void add_gen_command(CLI::App& app, int& exit_code) {
+  using namespace gen_command;
   auto* gen = app.add_subcommand("gen", "Generate scenes for measuring: the scale corpus");
   gen->require_subcommand(1);
   auto* building = gen->add_subcommand(

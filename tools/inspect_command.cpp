@@ -10,7 +10,7 @@
 #include "tools/pvs_stats.hpp"
 
 namespace walk::tools {
-namespace {
+namespace inspect_command {  // named: walk compiles its commands as one unit
 
 int inspect(const std::string& path, bool list) {
   const auto b = model::Bundle::open(path);
@@ -84,9 +84,10 @@ int inspect(const std::string& path, bool list) {
   return 0;
 }
 
-}  // namespace
+}  // namespace inspect_command
 
 void add_inspect_command(CLI::App& app, int& exit_code) {
+  using namespace inspect_command;
   auto path = std::make_shared<std::string>();
   auto list = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand("inspect", "Validate a bundle and print what it holds");

@@ -13,7 +13,7 @@
 #include "tools/option_vectors.hpp"
 
 namespace walk::tools {
-namespace {
+namespace probe_command {  // named: walk compiles its commands as one unit
 
 struct ProbeArgs {
   std::string bundle;
@@ -83,9 +83,10 @@ int run_probe(const ProbeArgs& args) {
   return 0;
 }
 
-}  // namespace
+}  // namespace probe_command
 
 void add_probe_command(CLI::App& app, int& exit_code) {
+  using namespace probe_command;
   auto args = std::make_shared<ProbeArgs>();
   auto* cmd = app.add_subcommand("probe", "Illuminance (lux) at a point of a bundle, per circuit and mixed");
   cmd->add_option("bundle", args->bundle, "Compiled .walk bundle")->required();

@@ -14,7 +14,7 @@
 #include "tools/option_vectors.hpp"
 
 namespace walk::tools {
-namespace {
+namespace render_command {  // named: walk compiles its commands as one unit
 
 struct RenderArgs {
   std::string bundle;
@@ -66,9 +66,10 @@ int run_render(const RenderArgs& args) {
   return 0;
 }
 
-}  // namespace
+}  // namespace render_command
 
 void add_render_command(CLI::App& app, int& exit_code) {
+  using namespace render_command;
   auto args = std::make_shared<RenderArgs>();
   auto* cmd = app.add_subcommand("render", "Render one frame of a bundle to PNG");
   cmd->add_option("bundle", args->bundle, "Compiled .walk bundle")->required();

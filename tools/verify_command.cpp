@@ -16,7 +16,7 @@
 #include "tools/commands.hpp"
 
 namespace walk::tools {
-namespace {
+namespace verify_command {  // named: walk compiles its commands as one unit
 
 using namespace walk::compiler;
 
@@ -232,9 +232,10 @@ int verify(const VerifyArgs& args) {
   return r.missed == 0 ? 0 : 2;
 }
 
-}  // namespace
+}  // namespace verify_command
 
 void add_verify_command(CLI::App& app, int& exit_code) {
+  using namespace verify_command;
   auto* verify_cmd = app.add_subcommand("verify", "Check a bundle against ground truth");
   verify_cmd->require_subcommand(1);
   auto args = std::make_shared<VerifyArgs>();
