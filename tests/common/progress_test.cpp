@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace walk {
-namespace {
+namespace progress_test {  // named, not anonymous: the suite compiles as unity batches
 
 class ProgressTest : public ::testing::Test {
  protected:
@@ -85,5 +85,5 @@ TEST_F(ProgressTest, AutoIsLogUnderSystemd) {
   ::unsetenv("INVOCATION_ID");
 }
 
-}  // namespace
+}  // namespace progress_test
 }  // namespace walk

@@ -13,7 +13,7 @@
 #include "tests/compiler/test_ray_compare.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_bsp_enclosing {  // named, not anonymous: the suite compiles as unity batches
 
 using V = model::Vec3;
 using testing::random_unit;
@@ -196,5 +196,5 @@ TEST(BspEnclosing, CommonAncestor) {
   EXPECT_EQ(bsp.common_ancestor(ba), lca);
 }
 
-}  // namespace
+}  // namespace test_bsp_enclosing
 }  // namespace walk::compiler

@@ -9,7 +9,7 @@
 #include "compiler/geometry/mesher.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_cleanup {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 
@@ -118,5 +118,5 @@ TEST(Cleanup, ConcaveFaceWithHoleMeshesToItsExactArea) {
   EXPECT_NEAR(area, 4 + 3 - 0.25, 1e-9);
 }
 
-}  // namespace
+}  // namespace test_cleanup
 }  // namespace walk::compiler

@@ -10,7 +10,7 @@
 #include "compiler/radiosity/validation/reference_solver.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_cornell_box {  // named, not anonymous: the suite compiles as unity batches
 
 const std::string kDir = std::string(WALK_SHARED_DATA) + "/cornell-box/";
 
@@ -114,5 +114,5 @@ TEST(CornellBox, ShooterAgreesWithIndependentReference) {
               rs.seconds);
 }
 
-}  // namespace
+}  // namespace test_cornell_box
 }  // namespace walk::compiler

@@ -13,7 +13,7 @@
 #include "tools/bench_support/ray_sets.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_crossing_lanes {  // named, not anonymous: the suite compiles as unity batches
 
 // The scalar walk's own test of one listing (plane_blocks.hpp), the reference for the kernel.
 bool scalar_crosses(const CrossingLanes& l, std::uint32_t j, int k, const CrossingRay& r, double& t) {
@@ -159,5 +159,5 @@ TEST(LanesOnModels, BigBlocksGatheredOnlyWhereRaysCrossThem) {
 
 INSTANTIATE_TEST_SUITE_P(Shared, LanesOnModels, ::testing::Values("house", "office", "e1m1", "dm1"));
 
-}  // namespace
+}  // namespace test_crossing_lanes
 }  // namespace walk::compiler

@@ -7,7 +7,7 @@
 #include "compiler/lighting/direct_light.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_direct_light {  // named, not anonymous: the suite compiles as unity batches
 
 model::Luminaire panel_at(double z, double size) {
   model::Luminaire l;
@@ -67,11 +67,11 @@ TEST(DirectLight, ResultDoesNotDependOnThreadCount) {
   EXPECT_EQ(one, two);
 }
 
-}  // namespace
+}  // namespace test_direct_light
 }  // namespace walk::compiler
 
 namespace walk::compiler {
-namespace {
+namespace test_direct_light {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(DirectLight, PointAndSpotFollowTheInverseSquareLaw) {
   const SurfaceSample s{{0, 0, 0}, {0, 0, 1}, {0.5, 0.5, 0.5}};
@@ -99,5 +99,5 @@ TEST(DirectLight, PointAndSpotFollowTheInverseSquareLaw) {
   EXPECT_EQ(direct_light({&aside, 1}, {spot}, 1, empty, {1, 1}).dense(1)[0], 0.0f);
 }
 
-}  // namespace
+}  // namespace test_direct_light
 }  // namespace walk::compiler

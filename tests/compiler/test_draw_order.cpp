@@ -9,7 +9,7 @@
 #include "model/model.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_draw_order {  // named, not anonymous: the suite compiles as unity batches
 
 // Six one-triangle polygons (polygon 3 is glass) and three cells seeing {0,2,4}, {2,4,5} and {1,3}.
 model::BundleContents six_polygons_three_cells() {
@@ -65,5 +65,5 @@ TEST(DrawOrder, NoCellsOrEmptyPvsChangesNothingThatMatters) {
   EXPECT_EQ(order_for_cells(empty).ranges_after, 0u);
 }
 
-}  // namespace
+}  // namespace test_draw_order
 }  // namespace walk::compiler

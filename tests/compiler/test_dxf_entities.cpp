@@ -17,7 +17,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_dxf_entities {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 
@@ -420,5 +420,5 @@ TEST(DxfEntities, NonFiniteCoordinateIsAnError) {
   EXPECT_NE(e.find("finite"), std::string::npos) << e;
 }
 
-}  // namespace
+}  // namespace test_dxf_entities
 }  // namespace walk::compiler

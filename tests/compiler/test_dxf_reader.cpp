@@ -9,7 +9,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_dxf_reader {  // named, not anonymous: the suite compiles as unity batches
 
 const std::string kOffice = std::string(WALK_SHARED_DATA) + "/eplus-medium-office/refbldg_medium_office.dxf";
 const std::string kHouse = std::string(WALK_SHARED_DATA) + "/eplus-house-doors/house.dxf";
@@ -215,5 +215,5 @@ TEST(DxfReader, EmptyModelIsAnError) {
   EXPECT_NE(message.find("no usable 3DFACE"), std::string::npos) << message;
 }
 
-}  // namespace
+}  // namespace test_dxf_reader
 }  // namespace walk::compiler

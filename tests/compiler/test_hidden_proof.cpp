@@ -14,7 +14,7 @@
 #include "test_visibility_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_hidden_proof {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 using testing::MiniBuilding;
@@ -287,5 +287,5 @@ TEST(ProofAllowance, DegenerateInputs) {
   EXPECT_EQ(proof_allowance(10, 50.0, false, 256, -3), 51) << "a negative floor is none";
 }
 
-}  // namespace
+}  // namespace test_hidden_proof
 }  // namespace walk::compiler

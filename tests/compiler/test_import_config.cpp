@@ -10,7 +10,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_import_config {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -78,5 +78,5 @@ TEST_F(ImportConfigTest, ErrorsNameFileLineAndKey) {
   EXPECT_NE(e.find(path_ + ":"), std::string::npos) << e;
 }
 
-}  // namespace
+}  // namespace test_import_config
 }  // namespace walk::compiler

@@ -12,7 +12,7 @@
 #include <string>
 
 namespace walk::compiler {
-namespace {
+namespace test_import_fuzz {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(ImportFuzz, ParsersSurviveBoundedFuzzing) {
   const char* env = std::getenv("WALK_FUZZ_SECONDS");
@@ -33,5 +33,5 @@ TEST(ImportFuzz, ParsersSurviveBoundedFuzzing) {
   }
 }
 
-}  // namespace
+}  // namespace test_import_fuzz
 }  // namespace walk::compiler

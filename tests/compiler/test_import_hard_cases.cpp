@@ -13,7 +13,7 @@
 #include "compiler/import/dxf_reader.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_import_hard_cases {  // named, not anonymous: the suite compiles as unity batches
 
 const std::string kHouse = std::string(WALK_SHARED_DATA) + "/eplus-house-doors/house.dxf";
 
@@ -67,5 +67,5 @@ TEST(ImportHardCases, BuildingTranslatedByAMillionMetresImportsToTheSameGeometry
   EXPECT_LT(worst, kTranslatedTolerance);
 }
 
-}  // namespace
+}  // namespace test_import_hard_cases
 }  // namespace walk::compiler

@@ -19,7 +19,7 @@
 #include "compiler/scene/scene_config.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_import_shared {  // named, not anonymous: the suite compiles as unity batches
 
 const std::string kData = WALK_SHARED_DATA;
 const std::string kScenes = std::string(WALK_SOURCE_DIR) + "/config/scenes/";
@@ -333,11 +333,11 @@ TEST(ImportShared, SibenikObj) {
   check_obj("sibenik.toml", "/sibenik/sibenik.obj", 1.0, 0);
 }
 
-}  // namespace
+}  // namespace test_import_shared
 }  // namespace walk::compiler
 
 namespace walk::compiler {
-namespace {
+namespace test_import_shared {  // named, not anonymous: the suite compiles as unity batches
 
 // No shipped scene has a stray face or an absurd coordinate: the stray fence leaves every real model whole.
 TEST(ImportShared, NoShippedSceneHasStrays) {
@@ -352,5 +352,5 @@ TEST(ImportShared, NoShippedSceneHasStrays) {
   }
 }
 
-}  // namespace
+}  // namespace test_import_shared
 }  // namespace walk::compiler

@@ -12,7 +12,7 @@
 #include "compiler/lighting/light_refinement.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_light_refinement {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 
@@ -159,5 +159,5 @@ TEST(LightRefinement, UnlitMeshesPanelsAndDarkScenesStayAsTheyWere) {
   EXPECT_EQ(dark[0].triangles, before.triangles);
 }
 
-}  // namespace
+}  // namespace test_light_refinement
 }  // namespace walk::compiler

@@ -11,7 +11,7 @@
 #include "model/model.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_lod {  // named, not anonymous: the suite compiles as unity batches
 
 // A cluster of n x n unit quads over z = height(x, y), each quad a polygon with vertices of its own (as the
 // mesh stage makes them), its coarse form two triangles.
@@ -124,5 +124,5 @@ TEST(Lod, NoCoarseFormMeansNoLevels) {
   EXPECT_TRUE(w.b.lod_ranges.empty());
 }
 
-}  // namespace
+}  // namespace test_lod
 }  // namespace walk::compiler

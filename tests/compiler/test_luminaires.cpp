@@ -6,7 +6,7 @@
 #include "compiler/scene/luminaires.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_luminaires {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(Luminaires, ImportedLightsKeepTheirCircuitBesideAddedPanels) {
   const SceneConfig config = load_scene_config(std::string(WALK_SOURCE_DIR) + "/config/scenes/house.toml");
@@ -31,5 +31,5 @@ TEST(Luminaires, ImportedLightsKeepTheirCircuitBesideAddedPanels) {
   for (const auto& l : m.luminaires) EXPECT_LT(l.circuit, m.circuits.size());
 }
 
-}  // namespace
+}  // namespace test_luminaires
 }  // namespace walk::compiler

@@ -18,7 +18,7 @@
 #include "texture_files.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_mesh_textures {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 using model::Vec3;
@@ -253,5 +253,5 @@ TEST_F(TexturedModel, UnreadableMapIsWarnedAboutAndTheColourUsed) {
   EXPECT_FALSE(m.polygons[0].texture_map);
 }
 
-}  // namespace
+}  // namespace test_mesh_textures
 }  // namespace walk::compiler

@@ -13,7 +13,7 @@
 #include "test_openings_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_mesher {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Polygon;
 using model::Vec3;
@@ -315,5 +315,5 @@ TEST(CoarseMesh, CornerOffTheDicedVerticesFallsBackAndEmptyStaysEmpty) {
   EXPECT_TRUE(empty->empty());
 }
 
-}  // namespace
+}  // namespace test_mesher
 }  // namespace walk::compiler

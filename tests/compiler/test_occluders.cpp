@@ -9,7 +9,7 @@
 #include "compiler/visibility/trace_through_glass.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_occluders {  // named, not anonymous: the suite compiles as unity batches
 
 using V = model::Vec3;
 
@@ -128,5 +128,5 @@ TEST(Occluders, TracePastABackFaceFindsTheFrontCopyARoundingBehind) {
   }
 }
 
-}  // namespace
+}  // namespace test_occluders
 }  // namespace walk::compiler

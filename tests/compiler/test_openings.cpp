@@ -9,7 +9,7 @@
 #include "test_openings_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_openings {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Polygon;
 using model::Role;
@@ -258,5 +258,5 @@ TEST(Openings, OppositeWindingCopiesCutBoth) {
   EXPECT_GT(area_vector(m.polygons[1].vertices).y, 0.0);
 }
 
-}  // namespace
+}  // namespace test_openings
 }  // namespace walk::compiler

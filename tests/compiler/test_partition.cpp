@@ -7,7 +7,7 @@
 #include "test_visibility_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_partition {  // named, not anonymous: the suite compiles as unity batches
 
 using testing::MiniBuilding;
 
@@ -164,11 +164,11 @@ TEST(Partition, ChildrenPointForward) {
       }
 }
 
-}  // namespace
+}  // namespace test_partition
 }  // namespace walk::compiler
 
 namespace walk::compiler {
-namespace {
+namespace test_partition {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(Partition, BackToBackFacesCoverOnce) {
   // A floor facing up and the ceiling below it facing down, in one plane: opposite windings must not cancel.
@@ -181,5 +181,5 @@ TEST(Partition, BackToBackFacesCoverOnce) {
   EXPECT_NEAR(occlusion_fraction(planes[0], Box{{0, 0, 0}, {4, 4, 6}}, p), 1.0, 1e-9);
 }
 
-}  // namespace
+}  // namespace test_partition
 }  // namespace walk::compiler

@@ -18,7 +18,7 @@
 #include "model/photometric_units.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_photometry {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -327,5 +327,5 @@ TEST(Photometry, ShotLightAgreesWithGatheredLightOnAFloor) {
   EXPECT_GT(shot_half[1] / shot_half[0], 1.5);  // the table's bright side lands on +x
 }
 
-}  // namespace
+}  // namespace test_photometry
 }  // namespace walk::compiler

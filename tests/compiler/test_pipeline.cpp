@@ -14,7 +14,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_pipeline {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -313,5 +313,5 @@ TEST_F(PipelineTest, ModelWithNothingToDrawIsAnError) {
   }
 }
 
-}  // namespace
+}  // namespace test_pipeline
 }  // namespace walk::compiler

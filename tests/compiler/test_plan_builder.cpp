@@ -9,7 +9,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_plan_builder {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 
@@ -119,5 +119,5 @@ TEST(PlanBuilder, OpenWiresAreCountedAndAPlanWithoutOutlinesIsAnError) {
   }
 }
 
-}  // namespace
+}  // namespace test_plan_builder
 }  // namespace walk::compiler

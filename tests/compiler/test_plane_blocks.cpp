@@ -11,7 +11,7 @@
 #include "tests/compiler/test_ray_compare.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_plane_blocks {  // named, not anonymous: the suite compiles as unity batches
 
 using V = model::Vec3;
 using testing::random_unit;
@@ -303,5 +303,5 @@ TEST(PlaneBlocks, EmptyAndSingleTriangleModels) {
   EXPECT_FALSE(one.closest({V(-1, 0.5, 1), V(1, 0, 0)}).hit());
 }
 
-}  // namespace
+}  // namespace test_plane_blocks
 }  // namespace walk::compiler

@@ -7,7 +7,7 @@
 #include "test_visibility_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_portals {  // named, not anonymous: the suite compiles as unity batches
 
 using testing::MiniBuilding;
 
@@ -134,5 +134,5 @@ TEST(Portals, CracksFromRoundingAreNoPortals) {
   EXPECT_TRUE(graph_of(w).portals.empty());
 }
 
-}  // namespace
+}  // namespace test_portals
 }  // namespace walk::compiler

@@ -17,7 +17,7 @@
 #include "model/luminaire_shapes.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_probe {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 constexpr double kFlux = 10000.0, kSide = 4.0, kRho = 0.5;
@@ -203,5 +203,5 @@ TEST_F(ProbeTest, PathTracedReferenceAndDisplayedLightMatchTheClosedForm) {
   EXPECT_GT(reference.rays, 300u * 256u);
 }
 
-}  // namespace
+}  // namespace test_probe
 }  // namespace walk::compiler

@@ -8,7 +8,7 @@
 #include "test_visibility_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_pvs {  // named, not anonymous: the suite compiles as unity batches
 
 using testing::all_cells;
 using testing::MiniBuilding;
@@ -397,5 +397,5 @@ TEST(Pvs, ComputeCellsFillsTheBundleSections) {
   EXPECT_EQ(total, m.b.pvs.size());
 }
 
-}  // namespace
+}  // namespace test_pvs
 }  // namespace walk::compiler

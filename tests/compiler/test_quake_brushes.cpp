@@ -18,7 +18,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_quake_brushes {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 using Points = std::array<Vec3, 3>;
@@ -312,5 +312,5 @@ TEST(QuakeMap, ErrorsNameTheLine) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace test_quake_brushes
 }  // namespace walk::compiler

@@ -16,7 +16,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_radiance_export {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -130,5 +130,5 @@ TEST(RadianceExport, SceneHasItsTrianglesMaterialsAndLightsAtTheSolversPower) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace test_radiance_export
 }  // namespace walk::compiler

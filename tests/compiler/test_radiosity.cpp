@@ -12,7 +12,7 @@
 #include "compiler/radiosity/progressive_solver.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_radiosity {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 
@@ -378,11 +378,11 @@ TEST(Radiosity, SameResultForOneAndTwoThreads) {
   EXPECT_EQ(one.radiosity.dense(1), two.radiosity.dense(1));
 }
 
-}  // namespace
+}  // namespace test_radiosity
 }  // namespace walk::compiler
 
 namespace walk::compiler {
-namespace {
+namespace test_radiosity {  // named, not anonymous: the suite compiles as unity batches
 
 // The area-weighted relative RMS difference of two solutions' scalar radiosity, as estimated_error defines it
 // (patches in `emitting` left out: their own glow is exact).
@@ -446,11 +446,11 @@ TEST(Radiosity, ErrorEstimateTracksTheMeasuredError) {
   }
 }
 
-}  // namespace
+}  // namespace test_radiosity
 }  // namespace walk::compiler
 
 namespace walk::compiler {
-namespace {
+namespace test_radiosity {  // named, not anonymous: the suite compiles as unity batches
 
 // An emitter on a circuit the solve was not given is a caller's error, said before a ray is cast: a sparse
 // row would otherwise hold a circuit no bundle record names.
@@ -468,5 +468,5 @@ TEST(Radiosity, AnEmitterBeyondTheCircuitCountIsRefused) {
       std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace test_radiosity
 }  // namespace walk::compiler

@@ -12,7 +12,7 @@
 #include "tools/bench_support/leak_box.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_ray_leak {  // named, not anonymous: the suite compiles as unity batches
 
 // 10M rays in all through the axial boxes (5M quads, 5M triangles: about 4 s at -O2 on two threads); the
 // rotated and moved boxes go through the BSP at about 0.5 Mrays/s, so they get 500k each here and 10M each
@@ -78,5 +78,5 @@ INSTANTIATE_TEST_SUITE_P(Boxes, RayLeak,
                                            LeakCase{"far_axial_quads_scalar_merge", true, false, 1e6, true}),
                          [](const auto& info) { return std::string(info.param.name); });
 
-}  // namespace
+}  // namespace test_ray_leak
 }  // namespace walk::compiler

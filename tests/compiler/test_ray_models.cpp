@@ -14,7 +14,7 @@
 #include "tools/bench_support/ray_sets.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_ray_models {  // named, not anonymous: the suite compiles as unity batches
 
 using testing::Agreement;
 using testing::compare_casters;
@@ -180,5 +180,5 @@ TEST(RayModelsFar, TranslatedByAMillionMetres) {
   }
 }
 
-}  // namespace
+}  // namespace test_ray_models
 }  // namespace walk::compiler

@@ -16,7 +16,7 @@
 #include "tests/compiler/test_ray_compare.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_ray_predicates {  // named, not anonymous: the suite compiles as unity batches
 
 using V = model::Vec3;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -337,5 +337,5 @@ TEST(RayCasterInterface, BatchesMatchSingleRaysOnAnyThreadCount) {
   }
 }
 
-}  // namespace
+}  // namespace test_ray_predicates
 }  // namespace walk::compiler

@@ -17,7 +17,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_scene_config {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -264,11 +264,11 @@ TEST_F(SceneConfigTest, PanelSizesAndDropsThatMakeNoPanelAreRefused) {
   EXPECT_NE(above.find("luminaires.per_group.drop"), std::string::npos) << above;
 }
 
-}  // namespace
+}  // namespace test_scene_config
 }  // namespace walk::compiler
 
 namespace walk::compiler {
-namespace {
+namespace test_scene_config {  // named, not anonymous: the suite compiles as unity batches
 
 // Luminaires in photometric terms: lumens, colour temperature, measured distributions, white luminance.
 class PhotometricSceneTest : public SceneConfigTest {
@@ -345,5 +345,5 @@ TEST_F(PhotometricSceneTest, BadPhotometricKeysNameTheKeyAndTheFile) {
   EXPECT_NE(c0.find("luminaires.fixture[0].c0"), std::string::npos) << c0;
 }
 
-}  // namespace
+}  // namespace test_scene_config
 }  // namespace walk::compiler

@@ -13,7 +13,7 @@
 #include "compiler/raycast/ray_caster.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_seal_gaps {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Polygon;
 using model::Vec3;
@@ -129,5 +129,5 @@ TEST(SealGaps, HouseFloorsAreClosedAlongTheBentWall) {
   EXPECT_EQ(floors(m), 0) << "sealed, " << s.summary();
 }
 
-}  // namespace
+}  // namespace test_seal_gaps
 }  // namespace walk::compiler

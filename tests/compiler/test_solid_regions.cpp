@@ -14,7 +14,7 @@
 #include "test_visibility_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_solid_regions {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 using testing::MiniBuilding;
@@ -336,5 +336,5 @@ TEST(OpenRegions, AnOpeningEndingAtACorniceTopJoinsNotTheSpaceAboveIt) {
   EXPECT_TRUE(r.leaks.empty());
 }
 
-}  // namespace
+}  // namespace test_solid_regions
 }  // namespace walk::compiler

@@ -17,7 +17,7 @@
 #include "model/error.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_stray_geometry {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 using model::Vec3;
@@ -212,5 +212,5 @@ TEST_F(HardCompile, ModelPathThatIsAFolderSaysSo) {
   EXPECT_NE(err.find("file"), std::string::npos) << err;
 }
 
-}  // namespace
+}  // namespace test_stray_geometry
 }  // namespace walk::compiler

@@ -14,7 +14,7 @@
 #include "test_visibility_util.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_structure_detail {  // named, not anonymous: the suite compiles as unity batches
 
 using testing::MiniBuilding;
 using testing::test_config;
@@ -312,5 +312,5 @@ TEST(InsideFlood, ASightLineOutOfAWindowDoesNotPassThroughABlockToAnother) {
   EXPECT_EQ(testing::missed_pixels(m, vis, {a, b}), 0u);
 }
 
-}  // namespace
+}  // namespace test_structure_detail
 }  // namespace walk::compiler

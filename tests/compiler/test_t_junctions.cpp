@@ -16,7 +16,7 @@
 #include "compiler/raycast/ray_caster.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_t_junctions {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Polygon;
 using model::Vec3;
@@ -308,5 +308,5 @@ TEST(TJunctions, HouseFloorsHaveNoOpenSeams) {
   }
 }
 
-}  // namespace
+}  // namespace test_t_junctions
 }  // namespace walk::compiler

@@ -4,7 +4,7 @@
 #include "compiler/geometry/triangle_weights.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_triangle_weights {  // named, not anonymous: the suite compiles as unity batches
 
 using model::Vec3;
 
@@ -48,5 +48,5 @@ TEST(TriangleWeights, DegenerateTrianglesGiveThirds) {
                  1.0 / 3, 1.0 / 3);  // collinear
 }
 
-}  // namespace
+}  // namespace test_triangle_weights
 }  // namespace walk::compiler

@@ -8,7 +8,7 @@
 #include "compiler/partition/partition.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_visibility_predicates {  // named, not anonymous: the suite compiles as unity batches
 
 const Winding kSquare{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
 
@@ -178,5 +178,5 @@ TEST(VisibilityPredicates, OpenRegionDropsCracksKeepsDoors) {
   EXPECT_TRUE(open_region({}, 5e-4).empty());
 }
 
-}  // namespace
+}  // namespace test_visibility_predicates
 }  // namespace walk::compiler

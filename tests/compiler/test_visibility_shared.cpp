@@ -14,7 +14,7 @@
 #include "compiler/visibility/verify_visibility.hpp"
 
 namespace walk::compiler {
-namespace {
+namespace test_visibility_shared {  // named, not anonymous: the suite compiles as unity batches
 
 class VisibilityShared : public ::testing::TestWithParam<const char*> {};
 
@@ -107,5 +107,5 @@ INSTANTIATE_TEST_SUITE_P(Scenes, VisibilityShared,
                          ::testing::Values("house", "medium-office", "apartment-plan", "quake-e1m1",
                                            "quake-dm1", "conference-room", "cornell-box-obj", "sibenik"));
 
-}  // namespace
+}  // namespace test_visibility_shared
 }  // namespace walk::compiler

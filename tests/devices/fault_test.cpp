@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace walk::devices {
-namespace {
+namespace fault_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(FaultTracker, OneLogLinePerEpisodeThenARateLimitedSummary) {
   FaultPolicy p;
@@ -40,5 +40,5 @@ TEST(FaultTracker, BackoffDoublesToTheCapAndResetsOnRecovery) {
   EXPECT_EQ(f.state(12.0), DeviceState::Down);
 }
 
-}  // namespace
+}  // namespace fault_test
 }  // namespace walk::devices

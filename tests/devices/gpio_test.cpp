@@ -7,7 +7,7 @@
 #include "devices/gpio/gpio_device.hpp"
 
 namespace walk::devices {
-namespace {
+namespace gpio_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(BeltEncoder, CleanPulsesGiveDistancePerPulseOverPeriod) {
   BeltEncoder e(0.01, 0.0005, 0.5);
@@ -143,5 +143,5 @@ TEST(GpioDevice, MissingChipFailsToOpenNamingIt) {
   EXPECT_NE(why.find("gpiochip-walk-test-missing"), std::string::npos) << why;
 }
 
-}  // namespace
+}  // namespace gpio_test
 }  // namespace walk::devices

@@ -9,7 +9,7 @@
 #include "model/error.hpp"
 
 namespace walk::devices {
-namespace {
+namespace hid_report_test {  // named, not anonymous: the suite compiles as unity batches
 
 // Report 3, 7 bytes: speed u16 LE at 1 (mm/s), steering s16 LE at 3 (milliradians), flags at 5..6.
 HidReportLayout treadmill_layout() {
@@ -221,5 +221,5 @@ TEST(HidDevice, HidapiSourceOnAMissingPathFailsToOpenWithAHint) {
   EXPECT_NE(why.find("/dev/hidraw-walk-test-missing"), std::string::npos) << why;
 }
 
-}  // namespace
+}  // namespace hid_report_test
 }  // namespace walk::devices

@@ -17,7 +17,7 @@
 extern char** environ;
 
 namespace walk::devices {
-namespace {
+namespace modbus_panel_test {  // named, not anonymous: the suite compiles as unity batches
 
 ModbusPanelConfig tcp_config(int port) {
   ModbusPanelConfig c;
@@ -156,5 +156,5 @@ TEST(ModbusPanel, RtuOverASocatPtyPair) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace modbus_panel_test
 }  // namespace walk::devices

@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace walk::devices {
-namespace {
+namespace register_levels_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(RegisterLevels, SpannedAndPerChannelReadsGiveTheSameLevels) {
   const std::vector<int> registers{10, 12, 11};
@@ -35,5 +35,5 @@ TEST(RegisterLevels, GarbageNamesTheChannelAndLeavesNoLevels) {
   EXPECT_TRUE(none.garbage.empty() && none.levels.empty());
 }
 
-}  // namespace
+}  // namespace register_levels_test
 }  // namespace walk::devices

@@ -9,7 +9,7 @@
 #include "model/error.hpp"
 
 namespace walk::devices {
-namespace {
+namespace trace_devices_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -132,5 +132,5 @@ TEST_F(TraceTest, OutOfRangeValueNamesLine) {
   EXPECT_NE(msg.find(path + ":3:"), std::string::npos) << msg;
 }
 
-}  // namespace
+}  // namespace trace_devices_test
 }  // namespace walk::devices

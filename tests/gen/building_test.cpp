@@ -17,7 +17,7 @@
 #include "tools/gen/scene_writer.hpp"
 
 namespace walk::gen {
-namespace {
+namespace building_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -190,5 +190,5 @@ TEST(GenBuilding, BadOptionsAreErrors) {
   EXPECT_THROW((void)load_plan_unit("castle", kScenes, kData), walk::Error);
 }
 
-}  // namespace
+}  // namespace building_test
 }  // namespace walk::gen

@@ -18,7 +18,7 @@
 #include "two_room_kiosk.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace daemon_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -220,5 +220,5 @@ TEST(Summary, IsValidJsonWithNullsForNumbersThatAreNot) {
   EXPECT_EQ(j.at("mode"), "simulated");
 }
 
-}  // namespace
+}  // namespace daemon_test
 }  // namespace walk::kiosk

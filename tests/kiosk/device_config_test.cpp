@@ -13,7 +13,7 @@
 #include "model/error.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace device_config_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -180,5 +180,5 @@ TEST_F(DeviceConfigTest, DropinAllowsOnlyTheConfiguredDevicesAndNetworkOnlyForMo
   }
 }
 
-}  // namespace
+}  // namespace device_config_test
 }  // namespace walk::kiosk

@@ -20,7 +20,7 @@
 #include "test_bundle.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace device_walk_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -313,5 +313,5 @@ TEST(HouseModbusWalk, WalksThroughTheDoorAndAPanelRegisterBrightensThatRoom) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace device_walk_test
 }  // namespace walk::kiosk

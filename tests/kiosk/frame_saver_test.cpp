@@ -8,7 +8,7 @@
 #include <random>
 
 namespace walk::kiosk {
-namespace {
+namespace frame_saver_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -84,5 +84,5 @@ TEST_F(FrameSaverTest, AFailedWriteIsCountedAndLeavesNoPartialFile) {
   EXPECT_FALSE(fs::exists(dir_ / "ok.png.part"));
 }
 
-}  // namespace
+}  // namespace frame_saver_test
 }  // namespace walk::kiosk

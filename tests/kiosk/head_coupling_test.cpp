@@ -20,7 +20,7 @@
 #include "tests/kiosk/two_room_kiosk.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace head_coupling_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -319,5 +319,5 @@ TEST(ScreenConfig, BadScreensAreRefusedNamingTheKey) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace head_coupling_test
 }  // namespace walk::kiosk

@@ -20,7 +20,7 @@
 #include "firmware-host/daemon.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace house_walk_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -150,5 +150,5 @@ TEST_F(HouseWalkTest, WalkdStopsCleanlyOnSigtermInRealTime) {
   EXPECT_NE(json.str().find("\"mode\": \"realtime\""), std::string::npos) << json.str();
 }
 
-}  // namespace
+}  // namespace house_walk_test
 }  // namespace walk::kiosk

@@ -10,7 +10,7 @@
 #include "model/error.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace kiosk_config_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -163,5 +163,5 @@ TEST_F(KioskConfigTest, DemoConfigAndItsTracesLoad) {
   EXPECT_GT(c.simulation.seconds, 30.0);
 }
 
-}  // namespace
+}  // namespace kiosk_config_test
 }  // namespace walk::kiosk

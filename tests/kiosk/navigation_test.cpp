@@ -7,7 +7,7 @@
 #include "test_bundle.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace navigation_test {  // named, not anonymous: the suite compiles as unity batches
 
 constexpr double kPi = std::numbers::pi;
 
@@ -114,5 +114,5 @@ TEST_F(NavigationTest, OpeningPolygonsNeverBlock) {
   EXPECT_GT(nav_.penetration({4.0, 1.0}, 0.0), 0.2);
 }
 
-}  // namespace
+}  // namespace navigation_test
 }  // namespace walk::kiosk

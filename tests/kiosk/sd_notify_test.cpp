@@ -16,7 +16,7 @@
 
 #include "test_bundle.hpp"
 
-namespace {
+namespace sd_notify_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -102,4 +102,4 @@ TEST(WalkdNotify, SendsReadyWatchdogStatusAndStopping) {
   EXPECT_NE(status_it->find("dimmer_panel down"), std::string::npos) << *status_it;
 }
 
-}  // namespace
+}  // namespace sd_notify_test

@@ -23,7 +23,7 @@
 #include "two_room_kiosk.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace soak_test {  // named, not anonymous: the suite compiles as unity batches
 
 constexpr double kFrameRate = 4.0;          // simulated frames a second: 345,600 frames in a day
 constexpr double kFaultEvery = 300.0;       // a panel fault every 5 simulated minutes ...
@@ -202,5 +202,5 @@ TEST_F(SoakTest, DayOfFaultsAndDimmerSweepsKeepsMemoryFlatAndLightOnTime) {
             << max_raw_after_warm_up / 1048576.0 << "), " << s.wall_seconds << " s wall\n";
 }
 
-}  // namespace
+}  // namespace soak_test
 }  // namespace walk::kiosk

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace {
+namespace systemd_unit_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(SystemdUnit, VerifiesWithoutAnyOutput) {
   if (std::system("command -v systemd-analyze >/dev/null 2>&1") != 0) GTEST_SKIP() << "no systemd-analyze";
@@ -25,4 +25,4 @@ TEST(SystemdUnit, VerifiesWithoutAnyOutput) {
   EXPECT_EQ(text.str().find("FAIL"), std::string::npos) << text.str();
 }
 
-}  // namespace
+}  // namespace systemd_unit_test

@@ -13,7 +13,7 @@
 #include "model/bundle.hpp"
 
 namespace walk::kiosk {
-namespace {
+namespace version_test {  // named, not anonymous: the suite compiles as unity batches
 
 std::string output_of(const std::string& command) {
   std::string out;
@@ -48,5 +48,5 @@ TEST(Version, BundleRecordsTheCompilerAndInspectPrintsIt) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace version_test
 }  // namespace walk::kiosk

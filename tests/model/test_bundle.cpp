@@ -13,7 +13,7 @@
 #include "model/luminaire_shapes.hpp"
 
 namespace walk::model {
-namespace {
+namespace test_bundle {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -467,5 +467,5 @@ TEST_F(BundleTest, LocateCellWalksTheTree) {
   EXPECT_EQ(b->locate_cell(on_plane), 1u);  // ties go to the front side
 }
 
-}  // namespace
+}  // namespace test_bundle
 }  // namespace walk::model

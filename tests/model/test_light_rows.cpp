@@ -5,7 +5,7 @@
 #include "model/light_rows.hpp"
 
 namespace walk::model {
-namespace {
+namespace test_light_rows {  // named, not anonymous: the suite compiles as unity batches
 
 // Three rows of two circuits: the first lit by circuit 1 alone, the second by none, the third by both.
 const std::vector<float> kDense{0.0f, 0.0f, 0.0f, 1.0f, 2.0f, 3.0f,  //
@@ -40,5 +40,5 @@ TEST(LightRows, NoCircuitsOrNoRowsIsEmpty) {
   EXPECT_TRUE(built.row(0).empty());
 }
 
-}  // namespace
+}  // namespace test_light_rows
 }  // namespace walk::model

@@ -8,7 +8,7 @@
 #include "model/toml_table.hpp"
 
 namespace walk {
-namespace {
+namespace test_toml_table {  // named, not anonymous: the suite compiles as unity batches
 
 std::string error_of(const std::function<void()>& read) {
   try {
@@ -52,5 +52,5 @@ TEST(TomlTable, FailWithoutAKeyNamesTheTableOrJustTheProblem) {
   EXPECT_NE(unknown.find("kiosk.toml:1: unknown key 'a'"), std::string::npos) << unknown;
 }
 
-}  // namespace
+}  // namespace test_toml_table
 }  // namespace walk

@@ -15,7 +15,7 @@
 #include "render_test_support.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace albedo_map_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -183,5 +183,5 @@ TEST_F(AlbedoMapTest, PixelsShowTheLightTimesTexelOverMeanOnEveryDrawingPath) {
   EXPECT_LT(still.other, sampled / 6) << "anti-aliasing softens the cells' edges a little";
 }
 
-}  // namespace
+}  // namespace albedo_map_test
 }  // namespace walk::render::test

@@ -10,7 +10,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace backend_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(BackendNames, RoundTrip) {
   for (BackendKind kind :
@@ -146,5 +146,5 @@ TEST(Backends, OSMesaAndEglDrawTheSameFrame) {
   EXPECT_LE(worst, 1) << "largest difference between OSMesa and EGL, in 8-bit steps";
 }
 
-}  // namespace
+}  // namespace backend_test
 }  // namespace walk::render::test

@@ -11,7 +11,7 @@
 #include "model/model.hpp"
 
 namespace walk::render {
-namespace {
+namespace cluster_layout_test {  // named, not anonymous: the suite compiles as unity batches
 
 using R = model::Role;
 
@@ -185,5 +185,5 @@ TEST(ClusterLayout, LevelsOfDetailArePickedByProjectedErrorAndDrawnFromDenseVert
   EXPECT_EQ(cluster_draw_list(layout, form, all_units(layout), nullptr, &lod).triangles, 8u);
 }
 
-}  // namespace
+}  // namespace cluster_layout_test
 }  // namespace walk::render

@@ -13,7 +13,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace compact_light_image_test {  // named, not anonymous: the suite compiles as unity batches
 
 // The two rooms with a light gradient, circuit 1 a warm lamp (red tripled, blue halved): where both light,
 // one colour per vertex cannot hold both tints, so the compiler's choice keeps circuit 0 compact only.
@@ -169,5 +169,5 @@ INSTANTIATE_TEST_SUITE_P(Headless, CompactLightImageTest,
                          ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 
-}  // namespace
+}  // namespace compact_light_image_test
 }  // namespace walk::render::test

@@ -9,7 +9,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace dimmer_image_test {  // named, not anonymous: the suite compiles as unity batches
 
 // Room A on circuit 0 only, room B on circuit 1 only.
 TwoRooms separate_circuits() {
@@ -153,5 +153,5 @@ TEST_P(DimmerImageTest, BlendingIsMonotoneBetweenLevels) {
 INSTANTIATE_TEST_SUITE_P(Headless, DimmerImageTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 
-}  // namespace
+}  // namespace dimmer_image_test
 }  // namespace walk::render::test

@@ -14,7 +14,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace frame_time_test {  // named, not anonymous: the suite compiles as unity batches
 
 constexpr int kFrameWidth = 1280;
 constexpr int kFrameHeight = 720;
@@ -76,5 +76,5 @@ TEST(FrameTime, HouseAt1280x720) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace frame_time_test
 }  // namespace walk::render::test

@@ -10,7 +10,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace glfw_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(GlfwBackend, BlitsTheFrameToTheWindow) {
 #if !WALK_WITH_GLFW
@@ -94,5 +94,5 @@ TEST(GlfwBackend, RenderersPresentIntoTheirOwnRegionsAndStereoFallsBackToMono) {
 #endif
 }
 
-}  // namespace
+}  // namespace glfw_test
 }  // namespace walk::render::test

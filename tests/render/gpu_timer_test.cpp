@@ -10,7 +10,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace gpu_timer_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(FrameTiming, NamesParse) {
   EXPECT_EQ(parse_frame_timing("auto"), FrameTiming::Auto);
@@ -90,5 +90,5 @@ TEST_P(GpuTimerTest, RendererTimedByQueriesTeachesTheGovernor) {
 INSTANTIATE_TEST_SUITE_P(Headless, GpuTimerTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 
-}  // namespace
+}  // namespace gpu_timer_test
 }  // namespace walk::render::test

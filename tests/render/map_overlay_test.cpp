@@ -12,7 +12,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace map_overlay_test {  // named, not anonymous: the suite compiles as unity batches
 
 class MapOverlayTest : public ::testing::TestWithParam<BackendKind> {};
 
@@ -128,5 +128,5 @@ TEST_P(MapOverlayTest, TheLeakPathIsDrawnFromTheSeedToTheOpening) {
 INSTANTIATE_TEST_SUITE_P(Headless, MapOverlayTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 
-}  // namespace
+}  // namespace map_overlay_test
 }  // namespace walk::render::test

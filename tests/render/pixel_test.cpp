@@ -15,7 +15,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace pixel_test {  // named, not anonymous: the suite compiles as unity batches
 
 constexpr int kTolerance = 2;  // 8-bit steps: llvmpipe's float-to-unorm rounding and interpolation
 
@@ -224,5 +224,5 @@ TEST_P(PixelTest, ReadingAtAnotherSizeIsAnError) {
 INSTANTIATE_TEST_SUITE_P(Headless, PixelTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 
-}  // namespace
+}  // namespace pixel_test
 }  // namespace walk::render::test

@@ -10,7 +10,7 @@
 #include "render/renderer.hpp"
 
 namespace walk::render {
-namespace {
+namespace png_test {  // named, not anonymous: the suite compiles as unity batches
 
 Image read_png(const std::string& path) {
   png_image png;
@@ -57,5 +57,5 @@ TEST(Png, UnwritablePathNamesThePath) {
   }
 }
 
-}  // namespace
+}  // namespace png_test
 }  // namespace walk::render

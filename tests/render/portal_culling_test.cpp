@@ -16,7 +16,7 @@
 #include "render_test_support.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace portal_culling_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -115,5 +115,5 @@ INSTANTIATE_TEST_SUITE_P(Scenes, PortalCulling, ::testing::Values("house", "medi
                            return name;
                          });
 
-}  // namespace
+}  // namespace portal_culling_test
 }  // namespace walk::render::test

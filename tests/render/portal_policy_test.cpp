@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace walk::render {
-namespace {
+namespace portal_policy_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(PortalPolicy, ACellWhereTheWalkHidesLittleRestsThenTriesAgain) {
   PortalPolicy policy(2);
@@ -42,5 +42,5 @@ TEST(PortalPolicy, EmptyFramesAndUnknownCellsKeepWalking) {
   policy.rested(7);
 }
 
-}  // namespace
+}  // namespace portal_policy_test
 }  // namespace walk::render

@@ -10,7 +10,7 @@
 #include <vector>
 
 namespace walk::render {
-namespace {
+namespace portal_view_test {  // named, not anonymous: the suite compiles as unity batches
 
 // Looking along +x from `eye`, 90 degrees each way, square image: a point (x, y, z) ahead shows at
 // ndc ((y - eye.y) / (x - eye.x) * -1, (z - eye.z) / (x - eye.x)) (+y is to the left).
@@ -179,5 +179,5 @@ TEST(PortalView, AnEyeOutsideEveryCellSeesEverything) {
   for (std::uint32_t u = 0; u < 3; ++u) EXPECT_TRUE(view.shows(u));
 }
 
-}  // namespace
+}  // namespace portal_view_test
 }  // namespace walk::render

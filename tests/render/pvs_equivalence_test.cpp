@@ -8,7 +8,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace pvs_equivalence_test {  // named, not anonymous: the suite compiles as unity batches
 
 class PvsEquivalenceTest : public ::testing::TestWithParam<BackendKind> {};
 
@@ -78,5 +78,5 @@ INSTANTIATE_TEST_SUITE_P(Headless, PvsEquivalenceTest,
                          ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 
-}  // namespace
+}  // namespace pvs_equivalence_test
 }  // namespace walk::render::test

@@ -12,7 +12,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace refine_image_test {  // named, not anonymous: the suite compiles as unity batches
 
 class RefineImageTest : public ::testing::TestWithParam<BackendKind> {
  protected:
@@ -325,5 +325,5 @@ TEST_P(RefineImageTest, ReducedMovingLevelIsHalfResolution) {
 INSTANTIATE_TEST_SUITE_P(Headless, RefineImageTest, ::testing::Values(BackendKind::OSMesa, BackendKind::EGL),
                          [](const auto& info) { return std::string(backend_kind_name(info.param)); });
 
-}  // namespace
+}  // namespace refine_image_test
 }  // namespace walk::render::test

@@ -15,7 +15,7 @@
 #include "render/subdivision.hpp"
 
 namespace walk::render {
-namespace {
+namespace refine_logic_test {  // named, not anonymous: the suite compiles as unity batches
 
 TEST(RefineSchedule, MovingThenBlendThenSamplesThenIdle) {
   RefineSchedule schedule({.blend_steps = 50, .aa_samples = 8});
@@ -249,11 +249,11 @@ TEST(FrameGovernor, SamplesPerFrameFollowTheSampleCost) {
   EXPECT_EQ(slow.samples_per_frame(), 1);
 }
 
-}  // namespace
+}  // namespace refine_logic_test
 }  // namespace walk::render
 
 namespace walk::render {
-namespace {
+namespace refine_logic_test {  // named, not anonymous: the suite compiles as unity batches
 
 // One quad 0-1-2-3 (counter-clockwise), split by the bundle along 1-3 as the compiler's dicing does.
 struct OneQuad {
@@ -354,5 +354,5 @@ TEST(Diagonals, TrianglesThatAreNotPairsAreLeftAlone) {
   EXPECT_TRUE(find_quads(polygons, indices).empty());
 }
 
-}  // namespace
+}  // namespace refine_logic_test
 }  // namespace walk::render

@@ -14,7 +14,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render::test {
-namespace {
+namespace screen_view_test {  // named, not anonymous: the suite compiles as unity batches
 
 constexpr double kPixelsPerMetre = 80.0;
 constexpr double kScreenTop = 2.0;
@@ -130,5 +130,5 @@ TEST(ScreenViewMath, ScreensThatAreNotRectanglesOrEyesBehindThemAreErrors) {
   EXPECT_EQ(screen_problem(shared_wall_screen()), "");
 }
 
-}  // namespace
+}  // namespace screen_view_test
 }  // namespace walk::render::test

@@ -16,7 +16,7 @@
 #include "two_rooms.hpp"
 
 namespace walk::render {
-namespace {
+namespace walk_tool_test {  // named, not anonymous: the suite compiles as unity batches
 
 namespace fs = std::filesystem;
 
@@ -93,11 +93,11 @@ TEST(WalkTool, RendersACompiledHouse) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace walk_tool_test
 }  // namespace walk::render
 
 namespace walk::render {
-namespace {
+namespace walk_tool_test {  // named, not anonymous: the suite compiles as unity batches
 
 // `walk bench render` end to end on the four-cell test bundle, small and short: every section prints its
 // rows (a smoke test: the figures themselves come from the full run in docs/RENDER.md).
@@ -175,5 +175,5 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace walk_tool_test
 }  // namespace walk::render
