@@ -4,7 +4,7 @@ find_program(GLAD_EXECUTABLE glad REQUIRED)
 set(GLAD_OUT ${CMAKE_BINARY_DIR}/glad)
 add_custom_command(
   OUTPUT ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/include/glad/gl.h
-  COMMAND ${GLAD_EXECUTABLE} --quiet --out-path ${GLAD_OUT} --api gl:core=3.3 --extensions GL_KHR_debug --reproducible c
+  COMMAND ${GLAD_EXECUTABLE} --quiet --out-path ${GLAD_OUT} --api gl:core=3.3 --extensions GL_KHR_debug,GL_ARB_pipeline_statistics_query --reproducible c
   COMMENT "Generating the GL 3.3 core loader with glad"
   VERBATIM)
 add_library(walk_glad STATIC ${GLAD_OUT}/src/gl.c)

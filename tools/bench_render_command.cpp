@@ -26,6 +26,7 @@
 #include "render/tonemap.hpp"
 #include "tools/commands.hpp"
 #include "tools/gnuplot.hpp"
+#include "tools/shading_count.hpp"
 
 namespace walk::tools {
 namespace bench_render_command {  // named: walk compiles its commands as one unit
@@ -339,12 +340,15 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
       std::vector<double> t;
       double triangles_sum = 0.0, polygons_sum = 0.0, ranges_sum = 0.0;
       ImageError error;
+      ShadingCount shaded;  // the frames only, not read_pixels
       for (std::size_t i = 0, k = 0; i < walk.size(); i += kLevelViewStride, ++k) {
+        shaded.begin();
         const auto t0 = Clock::now();
         renderer.draw(walk[i], width, height, level.options);
         progress.advance();
         glFinish();
         t.push_back(ms_since(t0));
+        shaded.end();
         triangles_sum += renderer.last_stats().triangles_drawn;
         polygons_sum += renderer.last_stats().polygons_drawn;
         ranges_sum += renderer.last_stats().draw_ranges;
@@ -352,10 +356,20 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
         error.mae_linear += e.mae_linear / double(reference.size());
         error.over_2_percent += e.over_2_percent / double(reference.size());
       }
-      print(scene, {"level", level.name, t.size(), percentile(t, 0.5), percentile(t, 0.99),
-                    polygons_sum / double(t.size()), triangles_sum / double(t.size()), error,
-                    std::to_string(int(ranges_sum / double(t.size()))) +
-                        " draw ranges; views along the walk; error against patches at full detail"});
+      // Fragments include the reduced level's scaled copy to full size: a full frame's pixels once more.
+      const double views = double(t.size());
+      const std::string shading =
+          ShadingCount::available()
+              ? fmt::format("; {:.0f} fragments ({:.2f} a pixel) and {:.0f} vertices shaded a frame",
+                            double(shaded.fragments) / views,
+                            double(shaded.fragments) / views / (double(width) * double(height)),
+                            double(shaded.vertices) / views)
+              : std::string();
+      print(scene,
+            {"level", level.name, t.size(), percentile(t, 0.5), percentile(t, 0.99), polygons_sum / views,
+             triangles_sum / views, error,
+             std::to_string(int(ranges_sum / views)) +
+                 " draw ranges; views along the walk; error against patches at full detail" + shading});
     }
     {
       // Walking while an operator turns the dimmers: the coarse level with every circuit's level changed

@@ -150,6 +150,15 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
     return std::stod(field);
   };
   EXPECT_LT(polygons("walk,culled,"), polygons("walk,unculled,"));
+  // The level rows count what was shaded (llvmpipe has pipeline statistics): a frame of the two rooms
+  // covers most of its 160x120 pixels at least once.
+  const auto patches_row = output.find("level,patches,");
+  ASSERT_NE(patches_row, std::string::npos);
+  const std::string row = output.substr(patches_row, output.find('\n', patches_row) - patches_row);
+  const auto shaded = row.find("; ", row.find("full detail"));
+  ASSERT_NE(shaded, std::string::npos) << row;
+  EXPECT_GT(std::stod(row.substr(shaded + 2)), 0.5 * 160 * 120) << row;
+  EXPECT_NE(row.find("vertices shaded a frame"), std::string::npos) << row;
   // Two bundles and --plot (and --no-portals, which the CLI must take): one table each (one header) and a
   // size summary with a row per bundle.
   const std::string plot = bundle->path() + ".size.png";
