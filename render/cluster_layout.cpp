@@ -232,9 +232,15 @@ int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_
 
 DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
                            std::span<const std::uint32_t> units, const Frustum* frustum, const LodChoice* lod,
-                           const PortalView* portals) {
+                           const PortalView* portals, const glm::vec3* nearest_first) {
   DrawList list;
   std::uint64_t opaque_end = 0, glass_end = 0;
+  struct Opaque {
+    float distance;
+    std::uint32_t unit;
+    IndexRange range;
+  };
+  std::vector<Opaque> opaque_units;
   for (const std::uint32_t u : units) {
     if (u >= layout.units() || layout.drawn[u] == 0) continue;
     if (frustum && !frustum->touches(layout.boxes[u])) continue;
@@ -246,9 +252,16 @@ DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
     }
     list.polygons += layout.drawn[u];
     list.triangles += (opaque.count + form.glass[u].count) / 3;
-    append(list.opaque, opaque, opaque_end);
+    if (nearest_first)
+      opaque_units.push_back({distance_to(*nearest_first, layout.boxes[u]), u, opaque});
+    else
+      append(list.opaque, opaque, opaque_end);
     append(list.glass, form.glass[u], glass_end);
   }
+  std::sort(opaque_units.begin(), opaque_units.end(), [](const Opaque& a, const Opaque& b) {
+    return a.distance < b.distance || (a.distance == b.distance && a.unit < b.unit);
+  });
+  for (const Opaque& o : opaque_units) append(list.opaque, o.range, opaque_end);
   return list;
 }
 

@@ -85,10 +85,14 @@ struct ClusterLayout {
 
 // The draw list of `units` (sorted) in `form`, less the units whose box lies outside `frustum` and those
 // `portals` does not show, when given; ranges that meet are merged.
-// With `lod` (and a form that has levels), each unit's opaque range is its level's.
+// With `lod` (and a form that has levels), each unit's opaque range is its level's. With `nearest_first`
+// (the eye), the opaque ranges go in order of their units' box distance from it, ties by unit, so an early
+// depth test can reject what nearer units hide; ranges then merge only where that order keeps them adjacent.
+// Glass keeps the units' order.
 [[nodiscard]] DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
                                          std::span<const std::uint32_t> units, const Frustum* frustum,
-                                         const LodChoice* lod = nullptr, const PortalView* portals = nullptr);
+                                         const LodChoice* lod = nullptr, const PortalView* portals = nullptr,
+                                         const glm::vec3* nearest_first = nullptr);
 // The level `lod` picks for unit `u` of `form` (0: its own range; l + 1: LOD level l).
 [[nodiscard]] int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u,
                             const LodChoice& lod);

@@ -136,6 +136,7 @@ struct Renderer::Impl {
   PresentRegion present_region;
   bool pvs_culling = true;
   bool frustum_culling = true;
+  bool nearest_first = true;
   bool portal_culling = true;
   std::optional<PortalView> portal_view;  // when the bundle has portals
   bool map_overlay = false;
@@ -233,7 +234,8 @@ struct Renderer::Impl {
   }
   // A frame's list from the list cell `cell`: its PVS clusters, less those outside the frustum of
   // `view_projection_matrix` when frustum culling is on, each at its coarsest level within `lod_pixels` of
-  // the full-size frame (flat light only: a level's vertices carry their own polygon's light).
+  // the full-size frame (flat light only: a level's vertices carry their own polygon's light), nearest
+  // first unless that is off.
   DrawList frame_list(std::uint32_t cell, const View& view, const glm::mat4& view_projection_matrix,
                       int full_height, bool coarse, float lod_pixels) {
     const Frustum frustum(view_projection_matrix);
@@ -275,7 +277,7 @@ struct Renderer::Impl {
     }
     return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, *units,
                              frustum_culling ? &frustum : nullptr, lod.max_pixels > 0.0f ? &lod : nullptr,
-                             portals);
+                             portals, nearest_first ? &lod.eye : nullptr);
   }
   // What each moving level would draw from `view`: the triangles of its draw list, for the governor.
   std::array<double, kMovingLevels> level_triangles(const View& view, int width, int height) {
@@ -518,6 +520,10 @@ void Renderer::set_portal_culling(bool enabled) {
 void Renderer::set_adaptive_portal_culling(bool enabled) {
   impl_->adaptive_portals = enabled;
   impl_->seen_cell = FrameStats::kNoCell;  // decide afresh for the next view
+}
+
+void Renderer::set_nearest_first(bool enabled) {
+  impl_->nearest_first = enabled;
 }
 
 void Renderer::set_frustum_culling(bool enabled) {

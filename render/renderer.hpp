@@ -134,6 +134,10 @@ class Renderer {
   // On by default: a cell whose portal walk hides little rests from it for a while (portal_policy.hpp). Off:
   // every frame walks (the pixel tests, which must exercise the walk in every view).
   void set_adaptive_portal_culling(bool enabled);
+  // On by default: opaque clusters are drawn nearest first (by their boxes' distance from the eye), so the
+  // depth test, which llvmpipe makes before shading, spares the fragments they hide. Off: the compiler's
+  // order, whose neighbouring clusters merge into fewer draw ranges. Either way the same picture.
+  void set_nearest_first(bool enabled);
   void draw(const View& view, int width, int height);
   void draw(const View& view, int width, int height, const DrawOptions& options);
 

@@ -136,6 +136,43 @@ TEST(ClusterLayout, TheFrustumDropsClustersWhollyBehindTheEyeAndKeepsThoseAcross
   EXPECT_TRUE(frustum.touches(Box{{1.4f, 0.4f, 0.4f}, {1.6f, 0.6f, 0.6f}})) << "a box around the eye is";
 }
 
+// Nearest first: opaque ranges by their boxes' distance from the eye (0 for a box around it), equal
+// distances by unit, units still adjacent merged; glass in the units' order whatever the eye.
+TEST(ClusterLayout, NearestFirstOrdersOpaqueRangesByBoxDistanceAndKeepsGlassInOrder) {
+  Scene s({R::Opaque, R::Opaque, R::Opaque, R::Opaque, R::Opaque, R::Glass, R::Glass});
+  for (std::uint32_t p = 0; p < 5; ++p) s.cluster({p});
+  s.cluster({5});
+  s.cluster({6});
+  const ClusterLayout layout = lay_out_clusters(s.input());
+  const auto offsets_in_units = [](const DrawBatch& batch) {
+    std::vector<std::uint32_t> units;
+    for (std::size_t i = 0; i < batch.counts.size(); ++i)
+      for (std::int32_t k = 0; k < batch.counts[i]; k += 6)
+        units.push_back(std::uint32_t(batch.byte_offsets[i] / sizeof(std::uint32_t) + std::uint32_t(k)) / 6);
+    return units;
+  };
+  // Squares sit at x = 0 .. 6 (glass at 5 and 6). An eye at x = 3.5: squares 3 and 4 are 0.5 m away (a tie,
+  // unit order), 2 at 1.5, 1 at 2.5, 0 at 3.5.
+  const glm::vec3 eye(3.5f, 0.5f, 0.5f);
+  const DrawList near =
+      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &eye);
+  EXPECT_EQ(offsets_in_units(near.opaque), (std::vector<std::uint32_t>{3, 4, 2, 1, 0}));
+  EXPECT_EQ(near.opaque.counts.size(), 4u) << "3 and 4 stay adjacent and merge";
+  ASSERT_EQ(near.glass.counts.size(), 1u);
+  EXPECT_EQ(near.glass.byte_offsets[0], 30u * sizeof(std::uint32_t)) << "glass in order, merged";
+  EXPECT_EQ(near.glass.counts[0], 12);
+  // An eye inside square 1's box (distance 0) draws it first; the same units and triangles as without an eye.
+  const glm::vec3 inside(1.0f, 0.5f, 0.5f);
+  const DrawList from_one =
+      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &inside);
+  EXPECT_EQ(offsets_in_units(from_one.opaque), (std::vector<std::uint32_t>{1, 0, 2, 3, 4}));
+  const DrawList in_order = cluster_draw_list(layout, layout.fine, all_units(layout), nullptr);
+  EXPECT_EQ(offsets_in_units(in_order.opaque), (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(in_order.opaque.counts.size(), 1u);
+  EXPECT_EQ(from_one.triangles, in_order.triangles);
+  EXPECT_EQ(from_one.polygons, in_order.polygons);
+}
+
 // Two clusters of two squares each (the squares' coarse form is their fine form) with one level of detail
 // each: one triangle, error 0.1 m.
 TEST(ClusterLayout, LevelsOfDetailArePickedByProjectedErrorAndDrawnFromDenseVertexRuns) {
