@@ -174,11 +174,13 @@ ClusterLayout lay_out_clusters(const LayoutInput& in) {
 
   layout.boxes.assign(ordered.size(), empty_box());
   layout.drawn.assign(ordered.size(), 0);
+  layout.unit_of_polygon.assign(in.polygons.size(), ClusterLayout::kNoUnit);
   for (std::size_t u = 0; u < ordered.size(); ++u) {
     for (const std::uint32_t p : ordered[u]) {
       const auto& poly = in.polygons[p];
       if (!is_drawn(poly.role) || poly.index_count == 0) continue;
       ++layout.drawn[u];
+      layout.unit_of_polygon[p] = std::uint32_t(u);
       for (std::uint64_t v = poly.first_vertex;
            v < std::uint64_t(poly.first_vertex) + poly.vertex_count && v < in.vertices.size(); ++v)
         grow(layout.boxes[u], in.vertices[v].position);
@@ -252,6 +254,7 @@ DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
     }
     list.polygons += layout.drawn[u];
     list.triangles += (opaque.count + form.glass[u].count) / 3;
+    list.units.push_back(u);
     if (nearest_first)
       opaque_units.push_back({distance_to(*nearest_first, layout.boxes[u]), u, opaque});
     else

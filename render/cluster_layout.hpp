@@ -70,7 +70,10 @@ struct ClusterLayout {
   std::vector<Box> boxes;              // per unit: the box of its drawn polygons (empty box: nothing drawn)
   std::vector<std::uint32_t> drawn;    // per unit: polygons drawn
   std::vector<std::uint32_t> unit_of;  // per PVS id (a bundle cluster, or a polygon without CLUS)
-  LaidOutForm fine, coarse;            // coarse is empty when the bundle has no coarse form
+  // Per polygon, the unit that draws it (kNoUnit: none, e.g. an opening).
+  static constexpr std::uint32_t kNoUnit = UINT32_MAX;
+  std::vector<std::uint32_t> unit_of_polygon;
+  LaidOutForm fine, coarse;  // coarse is empty when the bundle has no coarse form
   [[nodiscard]] std::size_t units() const { return boxes.size(); }
 };
 

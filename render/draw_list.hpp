@@ -22,6 +22,7 @@ struct DrawList {
   std::uint32_t polygons = 0;
   std::uint32_t triangles = 0;
   std::uint32_t triangles_behind_portals = 0;  // in the frustum, but shown by no portal of the eye's way
+  std::vector<std::uint32_t> units;            // the units drawn, ascending (what else they carry follows)
 };
 
 // Whether a polygon of this role is drawn: openings are holes and ignored faces are not part of the scene.

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -98,6 +99,11 @@ struct Renderer::Impl {
   std::optional<ShaderProgram> shaded_program;
   GLuint shaded_vao = 0, shaded_vbo = 0;
   GLsizei shaded_vertices = 0;
+  // Per unit, its subdivided triangles' run in the shaded buffer (in vertices): a frame draws the runs of
+  // the units its list draws, so still frames pay for the sub-quads in view, not the model's.
+  std::vector<IndexRange> shaded_runs;
+  std::vector<GLint> shaded_firsts;
+  std::vector<GLsizei> shaded_counts;
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_vbo = 0,
          coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0,
          polygon_first_buffer = 0, polygon_first_texture = 0, compact_colour_buffer = 0,
@@ -299,6 +305,8 @@ struct Renderer::Impl {
   void choose_diagonals();
   void draw_map(const View& view, int width, int height);
   void draw_shaded(GLuint vao, GLsizei count, const glm::mat4& view_projection);
+  // Draws the sub-quads of the units in `list`; returns their triangles.
+  std::uint32_t draw_subdivided(const DrawList& list, const glm::mat4& view_projection);
   void make_shaded_program();
 };
 
@@ -344,6 +352,33 @@ void draw_batch(const DrawBatch& batch) {
   glMultiDrawElements(GL_TRIANGLES, batch.counts.data(), GL_UNSIGNED_INT,
                       reinterpret_cast<const void* const*>(batch.byte_offsets.data()),
                       GLsizei(batch.counts.size()));
+}
+
+// Orders subdivided triangles (three vertices each) by the unit of their polygon and gives each unit its
+// run, in vertices. Triangles of a polygon no unit draws are dropped: their quads are not drawn either.
+void sort_by_unit(std::vector<ShadedVertex>& triangles, std::span<const std::uint32_t> unit_of_polygon,
+                  std::size_t units, std::vector<IndexRange>& runs) {
+  const auto unit_of = [&](std::size_t t) {
+    const std::uint32_t p = triangles[3 * t].polygon;
+    return p < unit_of_polygon.size() ? unit_of_polygon[p] : ClusterLayout::kNoUnit;
+  };
+  runs.assign(units, {});
+  for (std::size_t t = 0; t < triangles.size() / 3; ++t)
+    if (const std::uint32_t u = unit_of(t); u < units) runs[u].count += 3;
+  std::uint32_t first = 0;
+  for (IndexRange& run : runs) {
+    run.first = first;
+    first += run.count;
+  }
+  std::vector<ShadedVertex> sorted(first);
+  std::vector<std::uint32_t> next(units);
+  for (std::size_t u = 0; u < units; ++u) next[u] = runs[u].first;
+  for (std::size_t t = 0; t < triangles.size() / 3; ++t)
+    if (const std::uint32_t u = unit_of(t); u < units) {
+      std::copy_n(triangles.begin() + std::ptrdiff_t(3 * t), 3, sorted.begin() + next[u]);
+      next[u] += 3;
+    }
+  triangles = std::move(sorted);
 }
 
 bool same_view(const View& a, const View& b) {
@@ -673,6 +708,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     glDisable(GL_CULL_FACE);
   }
 
+  std::uint32_t subdivided = 0;
   if (!list.opaque.empty() || !list.glass.empty()) {
     const auto& meta = r.bundle.meta();
     r.pass = r.flat_pass && options.patch_weight <= 0.0f ? &*r.flat_pass : &r.full_pass;
@@ -714,7 +750,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
       // while still.
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(-1.0f, -1.0f);
-      r.draw_shaded(r.shaded_vao, r.shaded_vertices, view_projection_matrix);
+      subdivided = r.draw_subdivided(list, view_projection_matrix);
       glDisable(GL_POLYGON_OFFSET_FILL);
       glBindVertexArray(scene_vao);
     }
@@ -750,6 +786,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.cell = cell;
   r.stats.polygons_drawn = list.polygons;
   r.stats.triangles_drawn = list.triangles;
+  r.stats.subdivision_triangles_drawn = subdivided;
   r.stats.draw_ranges = std::uint32_t(list.opaque.counts.size() + list.glass.counts.size());
   r.stats.cells_seen = r.cells_seen;
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
@@ -773,6 +810,32 @@ void Renderer::Impl::make_shaded_program() {
 }
 
 // Leaves the scene program bound, as the caller had it.
+std::uint32_t Renderer::Impl::draw_subdivided(const DrawList& list, const glm::mat4& view_projection_matrix) {
+  shaded_firsts.clear();
+  shaded_counts.clear();
+  for (const std::uint32_t u : list.units) {
+    if (u >= shaded_runs.size() || shaded_runs[u].count == 0) continue;
+    const IndexRange run = shaded_runs[u];
+    if (!shaded_counts.empty() && GLuint(shaded_firsts.back() + shaded_counts.back()) == run.first)
+      shaded_counts.back() += GLsizei(run.count);  // units in a row: one range
+    else {
+      shaded_firsts.push_back(GLint(run.first));
+      shaded_counts.push_back(GLsizei(run.count));
+    }
+  }
+  if (shaded_counts.empty()) return 0;
+  glUseProgram(shaded_program->id());
+  glUniformMatrix4fv(shaded_program->uniform("u_view_projection"), 1, GL_FALSE,
+                     &view_projection_matrix[0][0]);
+  glUniform1f(shaded_program->uniform("u_inv_exposure"), 1.0f / exposure());
+  glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
+  if (albedo_maps) albedo_maps->bind();
+  glBindVertexArray(shaded_vao);
+  glMultiDrawArrays(GL_TRIANGLES, shaded_firsts.data(), shaded_counts.data(), GLsizei(shaded_counts.size()));
+  glUseProgram(pass->program.id());
+  return std::uint32_t(std::accumulate(shaded_counts.begin(), shaded_counts.end(), std::int64_t(0)) / 3);
+}
+
 void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
                                  const glm::mat4& view_projection_matrix) {
   glUseProgram(shaded_program->id());
@@ -873,8 +936,9 @@ void Renderer::Impl::choose_diagonals() {
   std::vector<Quad> opaque;
   for (const Quad& q : quads)
     if (bundle.polygons()[q.polygon].role != std::uint32_t(model::Role::Glass)) opaque.push_back(q);
-  const Subdivision sub = subdivide(opaque, vertices, colour, settings.subdivision_error * exposure(),
-                                    settings.subdivision_depth);
+  Subdivision sub = subdivide(opaque, vertices, colour, settings.subdivision_error * exposure(),
+                              settings.subdivision_depth);
+  sort_by_unit(sub.triangles, layout.unit_of_polygon, layout.units(), shaded_runs);
   // The replaced quads stay in the index buffer, under their sub-quads: where a sub-quad's edge midpoint
   // meets a neighbour that was not split (a T-junction), pixels that fall between the triangles in float
   // show the quad's own Gouraud colour instead of a crack to the background.

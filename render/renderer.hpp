@@ -82,7 +82,9 @@ struct FrameStats {
   int samples = 1;                     // samples accumulated in the picture now shown
   std::uint32_t quads_flipped = 0;     // quads split differently from the bundle at the last diagonal choice
   std::uint32_t quads_subdivided = 0;  // quads drawn as bilinear sub-quads at the last choice
-  std::uint32_t subdivision_triangles = 0;
+  std::uint32_t subdivision_triangles = 0;  // sub-quad triangles made at the last choice
+  // Of those, drawn by the last frame: the sub-quads of the units its list draws (0 while moving).
+  std::uint32_t subdivision_triangles_drawn = 0;
   double gpu_ms = -1.0;  // GPU time of the newest frame timed by queries (it lags a frame or two); -1: none
   // Frames refine() drew off the record to warm each moving level at a new frame size (not in frames_drawn).
   std::uint64_t warm_up_frames = 0;

@@ -554,17 +554,19 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
       const double choose = ms_since(t0);
       if (samples == 1) {
         const auto& st = renderer.last_stats();
-        print(scene, {"level",
-                      "diagonals+subdivision",
-                      1,
-                      choose,
-                      choose,
-                      double(st.polygons_drawn),
-                      double(st.triangles_drawn),
-                      {},
-                      std::to_string(st.quads_flipped) + " quads flipped; " +
-                          std::to_string(st.quads_subdivided) + " subdivided into " +
-                          std::to_string(st.subdivision_triangles) + " triangles (CPU + upload + frame)"});
+        print(scene,
+              {"level",
+               "diagonals+subdivision",
+               1,
+               choose,
+               choose,
+               double(st.polygons_drawn),
+               double(st.triangles_drawn),
+               {},
+               std::to_string(st.quads_flipped) + " quads flipped; " + std::to_string(st.quads_subdivided) +
+                   " subdivided into " + std::to_string(st.subdivision_triangles) + " triangles, " +
+                   std::to_string(st.subdivision_triangles_drawn) +
+                   " of them drawn with their clusters (CPU + upload + frame)"});
       }
       t0 = Clock::now();
       while (renderer.refine(still, width, height)) {

@@ -262,6 +262,30 @@ TEST_P(RefineImageTest, BilinearSubdivisionWhereTheTwistIsLarge) {
   }
 }
 
+// Sub-quads go with their unit: a still frame draws those of the units its list draws (the twist scene
+// subdivides quads on several walls, some behind each view), and the picture equals the one that draws every
+// unit and every sub-quad.
+TEST_P(RefineImageTest, SubQuadsAreDrawnWithTheirUnitsOnly) {
+  TwoRooms scene;
+  scene.light_twist = true;
+  auto bundle = open_two_rooms(scene, "twist_culled");
+  Renderer culled(*bundle), every(*bundle);
+  every.set_pvs_culling(false);
+  every.set_frustum_culling(false);
+  for (Renderer* r : {&culled, &every})
+    r->set_refine_settings({.blend_steps = 0, .aa_samples = 1, .subdivision_depth = 4});
+  for (const double sign : {-1.0, +1.0}) {
+    const View view = looking_along_x(sign);
+    const Image culled_image = converge(culled, view), every_image = converge(every, view);
+    const FrameStats& c = culled.last_stats();
+    ASSERT_GT(every.last_stats().subdivision_triangles, 0u);
+    EXPECT_EQ(every.last_stats().subdivision_triangles_drawn, every.last_stats().subdivision_triangles);
+    EXPECT_GT(c.subdivision_triangles_drawn, 0u) << "looking along " << sign;
+    EXPECT_LT(c.subdivision_triangles_drawn, c.subdivision_triangles) << "looking along " << sign;
+    EXPECT_EQ(culled_image.rgba, every_image.rgba) << "looking along " << sign;
+  }
+}
+
 // Where subdivided quads meet quads that are not, the sub-quads' edge midpoints are T-junctions: in float,
 // pixels along such an edge can fall between the triangles and show the clear colour. The room is closed
 // (ambient light everywhere), so a black pixel is a crack.
