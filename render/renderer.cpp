@@ -370,14 +370,17 @@ void sort_by_unit(std::vector<ShadedVertex>& triangles, std::span<const std::uin
     run.first = first;
     first += run.count;
   }
-  std::vector<ShadedVertex> sorted(first);
+  // A counting sort of triangle ids, then one sequential gather: no zero-filled copy of the vertices.
+  std::vector<std::uint32_t> order(first / 3);
   std::vector<std::uint32_t> next(units);
-  for (std::size_t u = 0; u < units; ++u) next[u] = runs[u].first;
+  for (std::size_t u = 0; u < units; ++u) next[u] = runs[u].first / 3;
   for (std::size_t t = 0; t < triangles.size() / 3; ++t)
-    if (const std::uint32_t u = unit_of(t); u < units) {
-      std::copy_n(triangles.begin() + std::ptrdiff_t(3 * t), 3, sorted.begin() + next[u]);
-      next[u] += 3;
-    }
+    if (const std::uint32_t u = unit_of(t); u < units) order[next[u]++] = std::uint32_t(t);
+  std::vector<ShadedVertex> sorted;
+  sorted.reserve(first);
+  for (const std::uint32_t t : order)
+    sorted.insert(sorted.end(), triangles.begin() + std::ptrdiff_t(3 * t),
+                  triangles.begin() + std::ptrdiff_t(3 * t + 3));
   triangles = std::move(sorted);
 }
 
