@@ -749,8 +749,8 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     draw_batch(list.opaque);
     if (options.diagonals && r.shaded_vertices > 0) {
       // The subdivided quads, over their own quads (kept as a crack filler): pulled one depth step towards
-      // the eye so they win wherever both cover a pixel. Drawn for every cell: they are few, and only
-      // while still.
+      // the eye so they win wherever both cover a pixel. Only those of the clusters in this frame's list,
+      // and only while still.
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(-1.0f, -1.0f);
       subdivided = r.draw_subdivided(list, view_projection_matrix);
@@ -812,7 +812,7 @@ void Renderer::Impl::make_shaded_program() {
   glUseProgram(GLuint(caller));
 }
 
-// Leaves the scene program bound, as the caller had it.
+// Leaves the scene program bound, as the caller had it (as draw_shaded does).
 std::uint32_t Renderer::Impl::draw_subdivided(const DrawList& list, const glm::mat4& view_projection_matrix) {
   shaded_firsts.clear();
   shaded_counts.clear();
@@ -839,6 +839,7 @@ std::uint32_t Renderer::Impl::draw_subdivided(const DrawList& list, const glm::m
   return std::uint32_t(std::accumulate(shaded_counts.begin(), shaded_counts.end(), std::int64_t(0)) / 3);
 }
 
+// Leaves the scene program bound, as the caller had it.
 void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
                                  const glm::mat4& view_projection_matrix) {
   glUseProgram(shaded_program->id());
