@@ -304,7 +304,9 @@ struct Renderer::Impl {
   void present(int width, int height) const;
   void choose_diagonals();
   void draw_map(const View& view, int width, int height);
-  void draw_shaded(GLuint vao, GLsizei count, const glm::mat4& view_projection);
+  // Draws runs of `vao`'s ShadedVertex triangles with the shaded program.
+  void draw_shaded(GLuint vao, std::span<const GLint> firsts, std::span<const GLsizei> counts,
+                   const glm::mat4& view_projection);
   // Draws the sub-quads of the units in `list`; returns their triangles.
   std::uint32_t draw_subdivided(const DrawList& list, const glm::mat4& view_projection);
   void make_shaded_program();
@@ -812,7 +814,7 @@ void Renderer::Impl::make_shaded_program() {
   glUseProgram(GLuint(caller));
 }
 
-// Leaves the scene program bound, as the caller had it (as draw_shaded does).
+// Leaves the scene program bound, as the caller had it.
 std::uint32_t Renderer::Impl::draw_subdivided(const DrawList& list, const glm::mat4& view_projection_matrix) {
   shaded_firsts.clear();
   shaded_counts.clear();
@@ -827,21 +829,13 @@ std::uint32_t Renderer::Impl::draw_subdivided(const DrawList& list, const glm::m
     }
   }
   if (shaded_counts.empty()) return 0;
-  glUseProgram(shaded_program->id());
-  glUniformMatrix4fv(shaded_program->uniform("u_view_projection"), 1, GL_FALSE,
-                     &view_projection_matrix[0][0]);
-  glUniform1f(shaded_program->uniform("u_inv_exposure"), 1.0f / exposure());
-  glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
-  if (albedo_maps) albedo_maps->bind();
-  glBindVertexArray(shaded_vao);
-  glMultiDrawArrays(GL_TRIANGLES, shaded_firsts.data(), shaded_counts.data(), GLsizei(shaded_counts.size()));
-  glUseProgram(pass->program.id());
+  draw_shaded(shaded_vao, shaded_firsts, shaded_counts, view_projection_matrix);
   return std::uint32_t(std::accumulate(shaded_counts.begin(), shaded_counts.end(), std::int64_t(0)) / 3);
 }
 
 // Leaves the scene program bound, as the caller had it.
-void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
-                                 const glm::mat4& view_projection_matrix) {
+void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, std::span<const GLint> firsts,
+                                 std::span<const GLsizei> counts, const glm::mat4& view_projection_matrix) {
   glUseProgram(shaded_program->id());
   glUniformMatrix4fv(shaded_program->uniform("u_view_projection"), 1, GL_FALSE,
                      &view_projection_matrix[0][0]);
@@ -849,7 +843,7 @@ void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, GLsizei count,
   glUniform1f(shaded_program->uniform("u_opacity"), 1.0f);
   if (albedo_maps) albedo_maps->bind();
   glBindVertexArray(shaded_vao_id);
-  glDrawArrays(GL_TRIANGLES, 0, count);
+  glMultiDrawArrays(GL_TRIANGLES, firsts.data(), counts.data(), GLsizei(counts.size()));
   glUseProgram(pass->program.id());
 }
 
@@ -917,7 +911,9 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
                GL_DYNAMIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glDisable(GL_CULL_FACE);  // whichever way the arrow winds from above
-  draw_shaded(marker_vao, GLsizei(marks.size()), plan);
+  const GLint first = 0;
+  const GLsizei count = GLsizei(marks.size());
+  draw_shaded(marker_vao, {&first, 1}, {&count, 1}, plan);
   glDisable(GL_SCISSOR_TEST);
   glViewport(0, 0, width, height);
 }
