@@ -241,9 +241,9 @@ struct Renderer::Impl {
   // A frame's list from the list cell `cell`: its PVS clusters, less those outside the frustum of
   // `view_projection_matrix` when frustum culling is on, each at its coarsest level within `lod_pixels` of
   // the full-size frame (flat light only: a level's vertices carry their own polygon's light), nearest
-  // first unless that is off.
+  // first unless that is off or `counts_only` (the governor's triangle counts, which no order changes).
   DrawList frame_list(std::uint32_t cell, const View& view, const glm::mat4& view_projection_matrix,
-                      int full_height, bool coarse, float lod_pixels) {
+                      int full_height, bool coarse, float lod_pixels, bool counts_only = false) {
     const Frustum frustum(view_projection_matrix);
     const LodChoice lod{glm::vec3(view.eye), float(double(full_height) / vertical_field_of_view(view)),
                         coarse ? lod_pixels : 0.0f};
@@ -283,7 +283,7 @@ struct Renderer::Impl {
     }
     return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, *units,
                              frustum_culling ? &frustum : nullptr, lod.max_pixels > 0.0f ? &lod : nullptr,
-                             portals, nearest_first ? &lod.eye : nullptr);
+                             portals, nearest_first && !counts_only ? &lod.eye : nullptr);
   }
   // What each moving level would draw from `view`: the triangles of its draw list, for the governor.
   std::array<double, kMovingLevels> level_triangles(const View& view, int width, int height) {
@@ -292,9 +292,9 @@ struct Renderer::Impl {
     std::array<double, kMovingLevels> out{};
     for (int l = 0; l < kMovingLevels; ++l) {
       const bool coarse = !layout.coarse.empty() && MovingLevel(l) != MovingLevel::Patches;
-      out[std::size_t(l)] =
-          frame_list(cell, view, view_projection_matrix, height, coarse, moving_error_pixels(MovingLevel(l)))
-              .triangles;
+      out[std::size_t(l)] = frame_list(cell, view, view_projection_matrix, height, coarse,
+                                       moving_error_pixels(MovingLevel(l)), true)
+                                .triangles;
     }
     return out;
   }
