@@ -12,12 +12,18 @@ namespace pvs_equivalence_test {  // named, not anonymous: the suite compiles as
 
 class PvsEquivalenceTest : public ::testing::TestWithParam<BackendKind> {};
 
-TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
-  auto backend = headless(GetParam());
+// The two rooms as four cells, each polygon diced 3x3: several ranges per polygon list, so merging and
+// ordering are exercised.
+std::unique_ptr<model::Bundle> open_four_cells(const std::string& name) {
   TwoRooms scene;
   scene.four_cells = true;
-  scene.subdivisions = 3;  // several ranges per polygon list, so merging is exercised
-  auto bundle = open_two_rooms(scene, "pvs_equivalence");
+  scene.subdivisions = 3;
+  return open_two_rooms(scene, name);
+}
+
+TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
+  auto backend = headless(GetParam());
+  auto bundle = open_four_cells("pvs_equivalence");
   ASSERT_EQ(bundle->cells().size(), 4u);
   Renderer culled(*bundle), unculled(*bundle);
   unculled.set_pvs_culling(false);
@@ -50,10 +56,7 @@ TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
 // one.
 TEST_P(PvsEquivalenceTest, FrustumCulledFrameEqualsUnculledFrame) {
   auto backend = headless(GetParam());
-  TwoRooms scene;
-  scene.four_cells = true;
-  scene.subdivisions = 3;
-  auto bundle = open_two_rooms(scene, "frustum_equivalence");
+  auto bundle = open_four_cells("frustum_equivalence");
   Renderer culled(*bundle), unculled(*bundle);
   culled.set_frustum_culling(true);  // the default
   unculled.set_pvs_culling(false);
@@ -78,10 +81,7 @@ TEST_P(PvsEquivalenceTest, FrustumCulledFrameEqualsUnculledFrame) {
 // and at the flat coarse level, from every cell.
 TEST_P(PvsEquivalenceTest, NearestFirstFrameEqualsCompilerOrderFrame) {
   auto backend = headless(GetParam());
-  TwoRooms scene;
-  scene.four_cells = true;
-  scene.subdivisions = 3;
-  auto bundle = open_two_rooms(scene, "nearest_first_equivalence");
+  auto bundle = open_four_cells("nearest_first_equivalence");
   Renderer nearest(*bundle), in_order(*bundle);
   in_order.set_nearest_first(false);
   int reordered = 0, views = 0;
