@@ -268,4 +268,16 @@ DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
   return list;
 }
 
+std::uint32_t triangles_of(const ClusterLayout& layout, const LaidOutForm& form,
+                           std::span<const std::uint32_t> units, const LodChoice* lod) {
+  std::uint32_t triangles = 0;
+  for (const std::uint32_t u : units) {
+    if (u >= layout.units()) continue;
+    const int level = lod ? lod_level(layout, form, u, *lod) : 0;
+    const IndexRange opaque = level == 0 ? form.opaque[u] : form.lod[u][std::size_t(level - 1)];
+    triangles += (opaque.count + form.glass[u].count) / 3;
+  }
+  return triangles;
+}
+
 }  // namespace walk::render

@@ -96,6 +96,9 @@ struct ClusterLayout {
                                          std::span<const std::uint32_t> units, const Frustum* frustum,
                                          const LodChoice* lod = nullptr, const PortalView* portals = nullptr,
                                          const glm::vec3* nearest_first = nullptr);
+// The triangles `units` draw in `form`, each at the level `lod` picks (its own range without).
+[[nodiscard]] std::uint32_t triangles_of(const ClusterLayout& layout, const LaidOutForm& form,
+                                         std::span<const std::uint32_t> units, const LodChoice* lod);
 // The level `lod` picks for unit `u` of `form` (0: its own range; l + 1: LOD level l).
 [[nodiscard]] int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u,
                             const LodChoice& lod);

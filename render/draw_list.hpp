@@ -22,6 +22,7 @@ struct DrawList {
   std::uint32_t polygons = 0;
   std::uint32_t triangles = 0;
   std::uint32_t triangles_behind_portals = 0;  // in the frustum, but shown by no portal of the eye's way
+  std::uint32_t triangles_occluded = 0;        // shown by the portals, but hidden by the occlusion buffer
   std::vector<std::uint32_t> units;            // the units drawn, ascending (what else they carry follows)
 };
 

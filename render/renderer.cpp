@@ -28,6 +28,7 @@
 #include "render/gl_check.hpp"
 #include "render/jitter.hpp"
 #include "render/light_mixer.hpp"
+#include "render/occluders.hpp"
 #include "render/portal_policy.hpp"
 #include "render/portal_view.hpp"
 #include "render/shader.hpp"
@@ -145,6 +146,23 @@ struct Renderer::Impl {
   bool nearest_first = true;
   bool portal_culling = true;
   std::optional<PortalView> portal_view;  // when the bundle has portals
+  // Occlusion culling: the occluders found at load time, and the last view they were rasterised for.
+  bool occlusion_culling = true;
+  OccluderSet occluders;
+  OcclusionCulling occlusion;
+  // The last view's units (frame_list): what it may draw, and what the portals and the occlusion buffer
+  // left out of that, with what they were made for.
+  std::vector<std::uint32_t> view_units, behind_portals, occluded_units;
+  struct ViewKey {
+    std::uint32_t cell = FrameStats::kNoCell;
+    glm::mat4 matrix{0.0f};
+    const std::vector<std::uint32_t>* units = nullptr;
+    const PortalView* portals = nullptr;
+    bool frustum = false, back_faces = false, occlusion = false;
+    int width = 0, height = 0;
+    bool operator==(const ViewKey&) const = default;
+  };
+  std::optional<ViewKey> view_key;  // unset: no view yet
   bool map_overlay = false;
   float map_fraction = 0.35f;
   GLuint marker_vao = 0, marker_vbo = 0;
@@ -243,7 +261,8 @@ struct Renderer::Impl {
   // the full-size frame (flat light only: a level's vertices carry their own polygon's light), nearest
   // first unless that is off or `counts_only` (the governor's triangle counts, which no order changes).
   DrawList frame_list(std::uint32_t cell, const View& view, const glm::mat4& view_projection_matrix,
-                      int full_height, bool coarse, float lod_pixels, bool counts_only = false) {
+                      int full_width, int full_height, bool coarse, float lod_pixels,
+                      bool counts_only = false) {
     const Frustum frustum(view_projection_matrix);
     const LodChoice lod{glm::vec3(view.eye), float(double(full_height) / vertical_field_of_view(view)),
                         coarse ? lod_pixels : 0.0f};
@@ -281,9 +300,39 @@ struct Renderer::Impl {
       walked = false;
       seen_cell = FrameStats::kNoCell;
     }
-    return cluster_draw_list(layout, coarse ? layout.coarse : layout.fine, *units,
-                             frustum_culling ? &frustum : nullptr, lod.max_pixels > 0.0f ? &lod : nullptr,
-                             portals, nearest_first && !counts_only ? &lod.eye : nullptr);
+    const ViewKey key{cell,    view_projection_matrix, units,      portals,    frustum_culling,
+                      culling, occlusion_culling,      full_width, full_height};
+    if (view_key != key) {
+      // What this view may draw, the same at every level: the units in the frustum that the portals show,
+      // less those the nearest walls hide. Each level's list is then made from it with no test per unit.
+      view_units.clear();
+      behind_portals.clear();
+      occluded_units.clear();
+      for (const std::uint32_t u : *units) {
+        if (u >= layout.units() || layout.drawn[u] == 0) continue;
+        if (frustum_culling && !frustum.touches(layout.boxes[u])) continue;
+        (portals && !portals->shows(u) ? behind_portals : view_units).push_back(u);
+      }
+      if (occlusion_culling && !occluders.polygons.empty()) {
+        occlusion.look(occluders, layout, view_units, glm::vec3(view.eye), view_projection_matrix, full_width,
+                       full_height, culling);
+        std::erase_if(view_units, [&](std::uint32_t u) {
+          if (!occlusion.hides(u)) return false;
+          occluded_units.push_back(u);
+          return true;
+        });
+      }
+      view_key = key;
+    }
+    const LaidOutForm& form = coarse ? layout.coarse : layout.fine;
+    const LodChoice* lod_choice = lod.max_pixels > 0.0f ? &lod : nullptr;
+    DrawList list = cluster_draw_list(layout, form, view_units, nullptr, lod_choice, nullptr,
+                                      nearest_first && !counts_only ? &lod.eye : nullptr);
+    if (!counts_only) {
+      list.triangles_behind_portals = triangles_of(layout, form, behind_portals, lod_choice);
+      list.triangles_occluded = triangles_of(layout, form, occluded_units, lod_choice);
+    }
+    return list;
   }
   // What each moving level would draw from `view`: the triangles of its draw list, for the governor.
   std::array<double, kMovingLevels> level_triangles(const View& view, int width, int height) {
@@ -292,7 +341,7 @@ struct Renderer::Impl {
     std::array<double, kMovingLevels> out{};
     for (int l = 0; l < kMovingLevels; ++l) {
       const bool coarse = !layout.coarse.empty() && MovingLevel(l) != MovingLevel::Patches;
-      out[std::size_t(l)] = frame_list(cell, view, view_projection_matrix, height, coarse,
+      out[std::size_t(l)] = frame_list(cell, view, view_projection_matrix, width, height, coarse,
                                        moving_error_pixels(MovingLevel(l)), true)
                                 .triangles;
     }
@@ -426,6 +475,7 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
   r.cell_units.resize(bundle.cells().size());
   if (!bundle.portals().empty())
     r.portal_view.emplace(bundle.portals(), bundle.nodes(), bundle.cells().size(), r.layout.boxes);
+  r.occluders = find_occluders(r.layout, vertices);
   const auto& indices = r.layout.fine.indices;
 
   // Static geometry: the VERT records are uploaded as they are (stride 40) and never touched again. A second
@@ -555,6 +605,11 @@ void Renderer::set_map_overlay(bool enabled, float fraction) {
 void Renderer::set_portal_culling(bool enabled) {
   if (impl_->portal_culling != enabled) impl_->restart = true;
   impl_->portal_culling = enabled;
+}
+
+void Renderer::set_occlusion_culling(bool enabled) {
+  impl_->occlusion_culling = enabled;
+  impl_->view_key.reset();
 }
 
 void Renderer::set_adaptive_portal_culling(bool enabled) {
@@ -691,7 +746,8 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   // Flat polygon light needs no diced vertices: the coarse form draws the same surfaces in far fewer
   // triangles.
   const bool coarse = options.patch_weight <= 0.0f && !options.diagonals && !r.layout.coarse.empty();
-  r.list = r.frame_list(list_cell, view, view_projection_matrix, full_height, coarse, options.lod_pixels);
+  r.list = r.frame_list(list_cell, view, view_projection_matrix, full_width, full_height, coarse,
+                        options.lod_pixels);
   if (r.walked)
     r.portal_policy.record(list_cell, r.list.triangles_behind_portals, r.list.triangles);
   else if (r.portal_culling && r.portal_view)
@@ -793,6 +849,7 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.triangles_drawn = list.triangles;
   r.stats.subdivision_triangles_drawn = subdivided;
   r.stats.draw_ranges = std::uint32_t(list.opaque.counts.size() + list.glass.counts.size());
+  r.stats.triangles_occluded = list.triangles_occluded;
   r.stats.cells_seen = r.cells_seen;
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
   r.stats.resolution = reduced ? std::max(0.1f, options.resolution) : 1.0f;

@@ -70,9 +70,10 @@ struct FrameStats {
       0xffffffffu;  // no cells, or the eye is outside all of them: all drawn
   std::uint32_t cell = 0;
   std::uint32_t polygons_drawn = 0;
-  std::uint32_t triangles_drawn = 0;  // at the level of detail drawn
-  std::uint32_t draw_ranges = 0;      // glMultiDrawElements entries after merging neighbouring clusters
-  std::uint32_t cells_seen = 0;       // cells reached through portals (0: portal culling did not run)
+  std::uint32_t triangles_drawn = 0;     // at the level of detail drawn
+  std::uint32_t draw_ranges = 0;         // glMultiDrawElements entries after merging neighbouring clusters
+  std::uint32_t cells_seen = 0;          // cells reached through portals (0: portal culling did not run)
+  std::uint32_t triangles_occluded = 0;  // left out by occlusion culling (after the PVS, frustum, portals)
   std::uint64_t frames_drawn =
       0;  // frames this renderer has drawn (draw() calls and refine() steps that drew)
   RefineStage stage = RefineStage::Moving;          // what the last refine() step did (Idle: drew nothing)
@@ -136,6 +137,10 @@ class Renderer {
   // On by default: a cell whose portal walk hides little rests from it for a while (portal_policy.hpp). Off:
   // every frame walks (the pixel tests, which must exercise the walk in every view).
   void set_adaptive_portal_culling(bool enabled);
+  // On by default: each view rasterises the nearest large walls, floors and ceilings in view into a small
+  // software depth buffer and leaves out the clusters they hide (occlusion_buffer.hpp: conservative, the
+  // same picture). Off: what the PVS, the frustum and the portals leave is drawn.
+  void set_occlusion_culling(bool enabled);
   // On by default: opaque clusters are drawn nearest first (by their boxes' distance from the eye), so the
   // depth test, which llvmpipe makes before shading, spares the fragments they hide. Off: the compiler's
   // order, whose neighbouring clusters merge into fewer draw ranges. Either way the same picture.

@@ -41,7 +41,8 @@ struct Options {
   int frames = 240;
   double target_hz = 60.0;
   std::string frame_timing = "auto";
-  bool portals = true;  // the governed, level and AA sections walk the portals (the kiosk's default)
+  bool portals = true;    // the governed, level and AA sections walk the portals (the kiosk's default)
+  bool occlusion = true;  // ... and cull by occlusion (the kiosk's default)
 };
 
 double ms_since(Clock::time_point t0) {
@@ -219,12 +220,14 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
 
     // Unculled, then each culling on top of the one before, along the same walk, alternating view by view so
     // that the machine's noise falls on every variant alike; each frame drawn and finished.
-    constexpr int kVariants = 4;
-    const char* names[kVariants] = {"unculled", "culled", "culled+frustum", "culled+frustum+portals"};
+    constexpr int kVariants = 5;
+    const char* names[kVariants] = {"unculled", "culled", "culled+frustum", "culled+frustum+portals",
+                                    "culled+frustum+portals+occlusion"};
     auto set_variant = [&](int k) {
       renderer.set_pvs_culling(k >= 1);
       renderer.set_frustum_culling(k >= 2);
       renderer.set_portal_culling(k >= 3);
+      renderer.set_occlusion_culling(k >= 4);
     };
     std::array<std::vector<double>, kVariants> walk_times;
     std::array<double, kVariants> walk_polygons{}, walk_triangles{}, cells_seen{};
@@ -261,7 +264,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
              walk_polygons[std::size_t(k)] / n,
              walk_triangles[std::size_t(k)] / n,
              {},
-             k == 3 ? fmt::format("patches; draw + glFinish; {:.1f} cells seen through portals on average",
+             k >= 3 ? fmt::format("patches; draw + glFinish; {:.1f} cells seen through portals on average",
                                   cells_seen[std::size_t(k)] / n)
                     : std::string("patches; draw + glFinish")});
     }
@@ -277,6 +280,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
                     std::string("p50 unculled / p50 ") + names[k]});
     renderer.set_frustum_culling(true);  // the kiosk's default from here on
     renderer.set_portal_culling(o.portals);
+    renderer.set_occlusion_culling(o.occlusion);
 
     // Governed: refine() every frame while moving, culled; the governor picks coarse or patches per cell.
     renderer.set_pvs_culling(true);
@@ -497,12 +501,59 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
       }
     }
     {
+      // Occlusion culling, alternating view by view: the nearest walls rasterised into a small software
+      // depth buffer and the clusters they hide left out (the kiosk's default), against drawing what the PVS,
+      // frustum and portals leave. Same pixels (OcclusionCullingFrameEqualsUnculledFrame).
+      constexpr std::size_t kOcclusionViewStride = 2;
+      for (const auto& [name, options] :
+           {std::pair{"simplified", render::DrawOptions{.patch_weight = 0.0f,
+                                    .lod_pixels = render::kSimplifiedErrorPixels}},
+            std::pair{"patches", full}}) {
+        std::array<std::vector<double>, 2> t;  // occlusion culled, not
+        std::array<double, 2> triangles{}, occluded{};
+        for (std::size_t i = 0; i < walk.size(); i += kOcclusionViewStride)
+          for (const int k : {0, 1}) {
+            renderer.set_occlusion_culling(k == 0);
+            const auto t0 = Clock::now();
+            renderer.draw(walk[i], width, height, options);
+            glFinish();
+            t[std::size_t(k)].push_back(ms_since(t0));
+            triangles[std::size_t(k)] += renderer.last_stats().triangles_drawn;
+            occluded[std::size_t(k)] += renderer.last_stats().triangles_occluded;
+            progress.advance();
+          }
+        renderer.set_occlusion_culling(o.occlusion);
+        const double views = double(t[0].size());
+        for (const int k : {0, 1})
+          print(scene, {"occlusion",
+                        fmt::format("{}-{}", k == 0 ? "occlusion-culled" : "unculled", name),
+                        t[std::size_t(k)].size(),
+                        percentile(t[std::size_t(k)], 0.5),
+                        percentile(t[std::size_t(k)], 0.99),
+                        0,
+                        triangles[std::size_t(k)] / views,
+                        {},
+                        fmt::format("{:.0f} triangles hidden a frame; alternating view by view",
+                                    occluded[std::size_t(k)] / views)});
+        print(scene, {"occlusion",
+                      fmt::format("speedup-occlusion-{}", name),
+                      t[0].size(),
+                      percentile(t[1], 0.5) / std::max(1e-9, percentile(t[0], 0.5)),
+                      percentile(t[1], 0.99) / std::max(1e-9, percentile(t[0], 0.99)),
+                      0,
+                      0,
+                      {},
+                      "unculled / occlusion culled: p50 column at p50, p99 column at p99"});
+      }
+    }
+    {
       // The light as the compiler chose it per circuit (compact where within its limit) against every
       // circuit full: frame time, display memory and image error, alternating view by view.
       render::Renderer full_light(*bundle, render::DisplayLightForm::Full);
       full_light.set_pvs_culling(true);
       full_light.set_frustum_culling(true);
       full_light.set_portal_culling(o.portals);
+      full_light.set_occlusion_culling(o.occlusion);
       const render::DisplayLight as_compiled(*bundle, render::DisplayLightForm::AsCompiled),
           every_full(*bundle, render::DisplayLightForm::Full);
       std::vector<double> t_compiled, t_full;
@@ -646,6 +697,9 @@ void add_bench_render_command(CLI::App& bench, int& exit_code) {
   cmd->add_flag("--portals,!--no-portals", o->portals,
                 "Walk the portals in the governed, level and AA sections (default on, as the kiosk); "
                 "--no-portals draws the PVS and frustum alone, to compare runs");
+  cmd->add_flag("--occlusion,!--no-occlusion", o->occlusion,
+                "Cull by occlusion in the governed, level and AA sections (default on, as the kiosk); "
+                "--no-occlusion draws what the PVS, frustum and portals leave, to compare runs");
   cmd->callback([o, &exit_code] { exit_code = run(*o); });
 }
 

@@ -112,6 +112,14 @@ model::BundleContents make_two_rooms(const TwoRooms& scene) {
   // The door itself: never drawn. Drawn, it would cover the view into B in the middle of the picture.
   b.rect({4, 1.5, 0}, {0, 0, 2.2}, {0, 1, 0}, false, scene.wall_factor,
          scene.glass_door ? model::Role::Glass : model::Role::Opening);
+  if (scene.crate) {
+    const double f = scene.wall_factor;
+    b.rect({4.5, 0.2, 0.5}, {0.5, 0, 0}, {0, 0.5, 0}, true, f);  // top, +z
+    b.rect({4.5, 0.2, 0}, {0, 0, 0.5}, {0, 0.5, 0}, true, f);    // -x
+    b.rect({5.0, 0.2, 0}, {0, 0.5, 0}, {0, 0, 0.5}, true, f);    // +x
+    b.rect({4.5, 0.2, 0}, {0.5, 0, 0}, {0, 0, 0.5}, true, f);    // -y
+    b.rect({4.5, 0.7, 0}, {0, 0, 0.5}, {0.5, 0, 0}, true, f);    // +y
+  }
   b.room(4.0, true);
   const auto total = std::uint32_t(c.polygons.size());
   c.light = model::LightRows::from_dense(b.light, std::size_t(scene.circuits));

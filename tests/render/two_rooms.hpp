@@ -38,6 +38,9 @@ struct TwoRooms {
   // Four cells (each room halved at y = 2) under a three-node tree; each room's PVS leaves out the other
   // room's copy of the shared wall, which faces away from it: conservative, and smaller than everything.
   bool four_cells = false;
+  // A 0.5 m crate (five faces, each its own polygon) in room B's corner behind the shared wall, hidden from
+  // most of room A: what occlusion culling should leave out.
+  bool crate = false;
   // Write the coarse form (CIDX/CRNG): each rectangle as two triangles over its grid's corner vertices.
   bool coarse_form = false;
 };

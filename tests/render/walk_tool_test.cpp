@@ -133,12 +133,27 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
       run(kWalk + " bench render " + bundle->path() + " --backend osmesa --size 160x120 --frames 12", output),
       0)
       << output;
-  for (const char* row : {"bench_render,walk,unculled,12,", "walk,culled,12,",
-                          "walk,culled+frustum+portals,12,", "walk,speedup-culled,", "governed,moving,12,",
-                          "level,reduced-half-res,", "level,simplified,", "level,coarse,", "level,patches,",
-                          "level,empty-frame,", "level,coarsest-lod,", "level,diagonals+subdivision,",
-                          "order,nearest-first-simplified,6,", "order,compiler-order-patches,6,",
-                          "order,speedup-nearest-first-patches,", "aa,1-samples,", "aa,64-samples,"})
+  for (const char* row : {"bench_render,walk,unculled,12,",
+                          "walk,culled,12,",
+                          "walk,culled+frustum+portals,12,",
+                          "walk,speedup-culled,",
+                          "governed,moving,12,",
+                          "level,reduced-half-res,",
+                          "level,simplified,",
+                          "level,coarse,",
+                          "level,patches,",
+                          "level,empty-frame,",
+                          "level,coarsest-lod,",
+                          "level,diagonals+subdivision,",
+                          "order,nearest-first-simplified,6,",
+                          "order,compiler-order-patches,6,",
+                          "order,speedup-nearest-first-patches,",
+                          "occlusion,occlusion-culled-simplified,6,",
+                          "occlusion,unculled-patches,6,",
+                          "occlusion,speedup-occlusion-patches,",
+                          "walk,culled+frustum+portals+occlusion,12,",
+                          "aa,1-samples,",
+                          "aa,64-samples,"})
     EXPECT_NE(output.find(row), std::string::npos) << "missing '" << row << "' in:\n" << output;
   // The culled walk draws fewer polygons than the unculled one (each room leaves out 3 of the other's).
   auto polygons = [&](const std::string& key) {
