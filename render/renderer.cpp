@@ -20,6 +20,7 @@
 #include "render/albedo_maps.hpp"
 #include "render/camera.hpp"
 #include "render/cluster_layout.hpp"
+#include "render/culling_policy.hpp"
 #include "render/diagonals.hpp"
 #include "render/display_light.hpp"
 #include "render/draw_list.hpp"
@@ -29,7 +30,6 @@
 #include "render/jitter.hpp"
 #include "render/light_mixer.hpp"
 #include "render/occluders.hpp"
-#include "render/portal_policy.hpp"
 #include "render/portal_view.hpp"
 #include "render/shader.hpp"
 #include "render/subdivision.hpp"
@@ -123,7 +123,10 @@ struct Renderer::Impl {
   bool seen_portals = false;
   bool near_all = false;  // sight starts in a cell off the walk: everything is drawn
   bool walked = false;    // the portals were walked for it
-  PortalPolicy portal_policy{bundle.cells().size()};
+  CullingPolicy portal_policy{bundle.cells().size()};
+  CullingPolicy occlusion_policy{bundle.cells().size()};
+  bool adaptive_occlusion = true;
+  bool occluded = false;  // the last view was culled by occlusion
   bool adaptive_portals = true;
   std::uint32_t cells_seen = 0;  // reached by that walk
   Framebuffer framebuffer;
@@ -281,7 +284,7 @@ struct Renderer::Impl {
         if (starts.size() > 1) near_all = &union_of_pvs(starts) == &every_unit;
         cells_seen = 0;
         walked =
-            portal_culling && portal_view && !near_all && (!adaptive_portals || portal_policy.walk(cell));
+            portal_culling && portal_view && !near_all && (!adaptive_portals || portal_policy.applies(cell));
         if (walked) {
           portal_view->look_from(starts, eye, view_projection_matrix);
           cells_seen = portal_view->sees_everything() ? 0u : std::uint32_t(portal_view->cells_reached());
@@ -313,7 +316,9 @@ struct Renderer::Impl {
         if (frustum_culling && !frustum.touches(layout.boxes[u])) continue;
         (portals && !portals->shows(u) ? behind_portals : view_units).push_back(u);
       }
-      if (occlusion_culling && !occluders.polygons.empty()) {
+      occluded = occlusion_culling && !occluders.polygons.empty() &&
+                 (!adaptive_occlusion || occlusion_policy.applies(cell));
+      if (occluded) {
         occlusion.look(occluders, layout, view_units, glm::vec3(view.eye), view_projection_matrix, full_width,
                        full_height, culling);
         std::erase_if(view_units, [&](std::uint32_t u) {
@@ -612,6 +617,11 @@ void Renderer::set_occlusion_culling(bool enabled) {
   impl_->view_key.reset();
 }
 
+void Renderer::set_adaptive_occlusion_culling(bool enabled) {
+  impl_->adaptive_occlusion = enabled;
+  impl_->view_key.reset();  // decide afresh for the next view
+}
+
 void Renderer::set_adaptive_portal_culling(bool enabled) {
   impl_->adaptive_portals = enabled;
   impl_->seen_cell = FrameStats::kNoCell;  // decide afresh for the next view
@@ -752,6 +762,10 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
     r.portal_policy.record(list_cell, r.list.triangles_behind_portals, r.list.triangles);
   else if (r.portal_culling && r.portal_view)
     r.portal_policy.rested(list_cell);
+  if (r.occluded)
+    r.occlusion_policy.record(list_cell, r.list.triangles_occluded, r.list.triangles);
+  else if (r.occlusion_culling)
+    r.occlusion_policy.rested(list_cell);
   const DrawList& list = r.list;
 
   glBindFramebuffer(GL_FRAMEBUFFER, target.id());
@@ -1026,7 +1040,7 @@ void Renderer::Impl::choose_diagonals() {
 void Renderer::Impl::warm_up(const View& view, int width, int height) {
   warmed_size = {width, height};
   const FrameStats kept_stats = stats;
-  const PortalPolicy kept_policy = portal_policy;
+  const CullingPolicy kept_portal_policy = portal_policy, kept_occlusion_policy = occlusion_policy;
   for (int l = 0; l < kMovingLevels; ++l) {
     const auto level = MovingLevel(l);
     draw_scene(view, width, height,
@@ -1037,7 +1051,8 @@ void Renderer::Impl::warm_up(const View& view, int width, int height) {
   glFinish();
   stats = kept_stats;
   stats.warm_up_frames += kMovingLevels;
-  portal_policy = kept_policy;
+  portal_policy = kept_portal_policy;
+  occlusion_policy = kept_occlusion_policy;
 }
 
 bool Renderer::refine(const View& view, int width, int height) {

@@ -134,13 +134,16 @@ class Renderer {
   // On by default, with the PVS: narrow the view through the cells' portals each frame (Luebke & Georges
   // 1995) and draw only the clusters the eye's chains of portals show. Bundles without portals draw the PVS.
   void set_portal_culling(bool enabled);
-  // On by default: a cell whose portal walk hides little rests from it for a while (portal_policy.hpp). Off:
+  // On by default: a cell whose portal walk hides little rests from it for a while (culling_policy.hpp). Off:
   // every frame walks (the pixel tests, which must exercise the walk in every view).
   void set_adaptive_portal_culling(bool enabled);
   // On by default: each view rasterises the nearest large walls, floors and ceilings in view into a small
   // software depth buffer and leaves out the clusters they hide (occlusion_buffer.hpp: conservative, the
   // same picture). Off: what the PVS, the frustum and the portals leave is drawn.
   void set_occlusion_culling(bool enabled);
+  // On by default: a cell where occlusion culling hides little rests from it for a while
+  // (culling_policy.hpp). Off: every view is culled (the pixel tests).
+  void set_adaptive_occlusion_culling(bool enabled);
   // On by default: opaque clusters are drawn nearest first (by their boxes' distance from the eye), so the
   // depth test, which llvmpipe makes before shading, spares the fragments they hide. Off: the compiler's
   // order, whose neighbouring clusters merge into fewer draw ranges. Either way the same picture.

@@ -61,6 +61,7 @@ TEST_P(PortalCulling, FramesEqualThePvsAloneAndDrawLess) {
   // `portals` also culls by occlusion (the kiosk's default); `walk_only` is the portal walk without it.
   Renderer portals(*bundle), walk_only(*bundle), pvs_only(*bundle), unculled(*bundle);
   for (Renderer* r : {&portals, &walk_only}) r->set_adaptive_portal_culling(false);  // walk every view
+  portals.set_adaptive_occlusion_culling(false);  // and cull every view by occlusion
   for (Renderer* r : {&walk_only, &pvs_only, &unculled}) r->set_occlusion_culling(false);
   pvs_only.set_portal_culling(false);
   unculled.set_pvs_culling(false);

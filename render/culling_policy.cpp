@@ -1,10 +1,10 @@
-#include "render/portal_policy.hpp"
+#include "render/culling_policy.hpp"
 
 #include <algorithm>
 
 namespace walk::render {
 
-void PortalPolicy::record(std::uint32_t cell, std::uint64_t hidden, std::uint64_t drawn) {
+void CullingPolicy::record(std::uint32_t cell, std::uint64_t hidden, std::uint64_t drawn) {
   if (cell >= cells_.size()) return;
   Cell& c = cells_[cell];
   c.hidden += hidden;
@@ -15,11 +15,11 @@ void PortalPolicy::record(std::uint32_t cell, std::uint64_t hidden, std::uint64_
   c.probes = 0;
 }
 
-void PortalPolicy::rested(std::uint32_t cell) {
+void CullingPolicy::rested(std::uint32_t cell) {
   if (cell < cells_.size() && cells_[cell].resting > 0) --cells_[cell].resting;
 }
 
-std::size_t PortalPolicy::cells_resting() const {
+std::size_t CullingPolicy::cells_resting() const {
   return std::size_t(
       std::count_if(cells_.begin(), cells_.end(), [](const Cell& c) { return c.resting > 0; }));
 }
