@@ -90,6 +90,8 @@ OccluderSet find_occluders(const ClusterLayout& layout, std::span<const model::V
       const std::uint32_t p = by_unit[k];
       const model::PolygonRecord& rec = form.polygons[p];
       if (rec.role != std::uint32_t(model::Role::Opaque) || rec.index_count < 3) continue;
+      // Drawn by the fine form too (patch frames draw it): a polygon one form leaves out hides nothing there.
+      if (layout.fine.polygons.size() <= p || layout.fine.polygons[p].index_count == 0) continue;
       if (std::uint64_t(rec.first_index) + rec.index_count > form.indices.size()) continue;
       ids.clear();
       bool valid = true;
