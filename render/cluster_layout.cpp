@@ -125,16 +125,6 @@ void renumber_vertices(LaidOutForm& form, std::size_t vertex_count) {
   }
 }
 
-// The distance from `eye` to the box's nearest point (0 inside).
-float distance_to(const glm::vec3& eye, const Box& box) {
-  float d2 = 0.0f;
-  for (int k = 0; k < 3; ++k) {
-    const float d = std::max({box.lo[k] - eye[k], 0.0f, eye[k] - box.hi[k]});
-    d2 += d * d;
-  }
-  return std::sqrt(d2);
-}
-
 }  // namespace
 
 LayoutInput layout_input(const model::Bundle& bundle) {

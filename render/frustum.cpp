@@ -1,6 +1,7 @@
 #include "render/frustum.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace walk::render {
@@ -15,6 +16,15 @@ void grow(Box& box, const float point[3]) {
     box.lo[k] = std::min(box.lo[k], point[k]);
     box.hi[k] = std::max(box.hi[k], point[k]);
   }
+}
+
+float distance_to(const glm::vec3& eye, const Box& box) {
+  float d2 = 0.0f;
+  for (int k = 0; k < 3; ++k) {
+    const float d = std::max({box.lo[k] - eye[k], 0.0f, eye[k] - box.hi[k]});
+    d2 += d * d;
+  }
+  return std::sqrt(d2);
 }
 
 Frustum::Frustum(const glm::mat4& m) {

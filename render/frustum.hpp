@@ -3,6 +3,7 @@
 // (Gribb & Hartmann). Conservative: a box is dropped only when it lies wholly outside one plane. Pure CPU.
 #include <array>
 #include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 namespace walk::render {
@@ -15,6 +16,8 @@ struct Box {
 // The empty box that any point grown into it becomes.
 [[nodiscard]] Box empty_box();
 void grow(Box& box, const float point[3]);
+// The distance from `eye` to the box's nearest point (0 inside).
+[[nodiscard]] float distance_to(const glm::vec3& eye, const Box& box);
 
 class Frustum {
  public:

@@ -221,18 +221,12 @@ void OcclusionCulling::look(const OccluderSet& set, const ClusterLayout& layout,
   nearest_.clear();
   for (const std::uint32_t u : candidates) {
     if (u + 1 >= set.unit_first.size() || set.unit_first[u] == set.unit_first[u + 1]) continue;
-    const Box& b = layout.boxes[u];
-    float d2 = 0.0f;
-    for (int k = 0; k < 3; ++k) {
-      const float d = std::max({b.lo[k] - eye[k], 0.0f, eye[k] - b.hi[k]});
-      d2 += d * d;
-    }
-    nearest_.push_back({d2, u});
+    nearest_.push_back({distance_to(eye, layout.boxes[u]), u});
   }
   std::sort(nearest_.begin(), nearest_.end());
   drawn_.clear();
   const glm::dvec3 e(eye);
-  for (const auto& [d2, u] : nearest_) {
+  for (const auto& [distance, u] : nearest_) {
     if (drawn_.size() >= kMaxOccluders) break;
     for (std::uint32_t p = set.unit_first[u]; p < set.unit_first[u + 1]; ++p) {
       const OccluderSet::Polygon& poly = set.polygons[p];
