@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <glm/geometric.hpp>
 #include <iostream>
 #include <optional>
@@ -454,98 +455,79 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
                       "one view"});
       }
     }
-    {
-      // Draw order, alternating view by view: opaque clusters nearest first (the kiosk's default) against
-      // the compiler's order (fewer, merged ranges), at the simplified level and at full detail. Same pixels
-      // (NearestFirstFrameEqualsCompilerOrderFrame); the difference is the shading llvmpipe's early depth
-      // test spares, which its fragment count does not show (it counts before the test).
-      constexpr std::size_t kOrderViewStride = 2;
+    // An A/B of one renderer switch at the simplified level and at full detail, alternating view by view
+    // (every second view) so the machine's noise falls on both alike: `set(true)` is the variant,
+    // `set(false)` the one it is compared with. Prints a row for each (`note` describes it from its frames'
+    // summed stats) and a speedup row (other / variant), then leaves the switch as the run has it
+    // (`set(kept)`).
+    struct Sums {
+      double ranges = 0.0, triangles = 0.0, occluded = 0.0;
+    };
+    auto alternate = [&](const char* section, const char* variant, const char* other, const char* speedup,
+                         const char* ratio, const std::function<void(bool)>& set, bool kept,
+                         bool triangles_column,
+                         const std::function<std::string(const Sums&, double views)>& note) {
+      constexpr std::size_t kViewStride = 2;
       for (const auto& [name, options] :
            {std::pair{"simplified", render::DrawOptions{.patch_weight = 0.0f,
                                     .lod_pixels = render::kSimplifiedErrorPixels}},
             std::pair{"patches", full}}) {
-        std::array<std::vector<double>, 2> t;  // nearest first, compiler order
-        std::array<double, 2> ranges{};
-        for (std::size_t i = 0; i < walk.size(); i += kOrderViewStride)
+        std::array<std::vector<double>, 2> t;  // variant, other
+        std::array<Sums, 2> sums{};
+        for (std::size_t i = 0; i < walk.size(); i += kViewStride)
           for (const int k : {0, 1}) {
-            renderer.set_nearest_first(k == 0);
+            set(k == 0);
             const auto t0 = Clock::now();
             renderer.draw(walk[i], width, height, options);
             glFinish();
             t[std::size_t(k)].push_back(ms_since(t0));
-            ranges[std::size_t(k)] += renderer.last_stats().draw_ranges;
+            const auto& st = renderer.last_stats();
+            sums[std::size_t(k)].ranges += st.draw_ranges;
+            sums[std::size_t(k)].triangles += st.triangles_drawn;
+            sums[std::size_t(k)].occluded += st.triangles_occluded;
             progress.advance();
           }
-        renderer.set_nearest_first(true);
+        set(kept);
         const double views = double(t[0].size());
         for (const int k : {0, 1})
-          print(scene, {"order",
-                        fmt::format("{}-{}", k == 0 ? "nearest-first" : "compiler-order", name),
+          print(scene, {section,
+                        fmt::format("{}-{}", k == 0 ? variant : other, name),
                         t[std::size_t(k)].size(),
                         percentile(t[std::size_t(k)], 0.5),
                         percentile(t[std::size_t(k)], 0.99),
                         0,
-                        0,
+                        triangles_column ? sums[std::size_t(k)].triangles / views : 0.0,
                         {},
-                        fmt::format("{:.0f} draw ranges; alternating view by view",
-                                    ranges[std::size_t(k)] / views)});
-        print(scene, {"order",
-                      fmt::format("speedup-nearest-first-{}", name),
+                        note(sums[std::size_t(k)], views)});
+        print(scene, {section,
+                      fmt::format("{}-{}", speedup, name),
                       t[0].size(),
                       percentile(t[1], 0.5) / std::max(1e-9, percentile(t[0], 0.5)),
                       percentile(t[1], 0.99) / std::max(1e-9, percentile(t[0], 0.99)),
                       0,
                       0,
                       {},
-                      "compiler order / nearest first: p50 column at p50, p99 column at p99"});
+                      fmt::format("{}: p50 column at p50, p99 column at p99", ratio)});
       }
-    }
-    {
-      // Occlusion culling, alternating view by view: the nearest walls rasterised into a small software
-      // depth buffer and the clusters they hide left out (the kiosk's default), against drawing what the PVS,
-      // frustum and portals leave. Same pixels (OcclusionCullingFrameEqualsUnculledFrame).
-      constexpr std::size_t kOcclusionViewStride = 2;
-      for (const auto& [name, options] :
-           {std::pair{"simplified", render::DrawOptions{.patch_weight = 0.0f,
-                                    .lod_pixels = render::kSimplifiedErrorPixels}},
-            std::pair{"patches", full}}) {
-        std::array<std::vector<double>, 2> t;  // occlusion culled, not
-        std::array<double, 2> triangles{}, occluded{};
-        for (std::size_t i = 0; i < walk.size(); i += kOcclusionViewStride)
-          for (const int k : {0, 1}) {
-            renderer.set_occlusion_culling(k == 0);
-            const auto t0 = Clock::now();
-            renderer.draw(walk[i], width, height, options);
-            glFinish();
-            t[std::size_t(k)].push_back(ms_since(t0));
-            triangles[std::size_t(k)] += renderer.last_stats().triangles_drawn;
-            occluded[std::size_t(k)] += renderer.last_stats().triangles_occluded;
-            progress.advance();
-          }
-        renderer.set_occlusion_culling(o.occlusion);
-        const double views = double(t[0].size());
-        for (const int k : {0, 1})
-          print(scene, {"occlusion",
-                        fmt::format("{}-{}", k == 0 ? "occlusion-culled" : "unculled", name),
-                        t[std::size_t(k)].size(),
-                        percentile(t[std::size_t(k)], 0.5),
-                        percentile(t[std::size_t(k)], 0.99),
-                        0,
-                        triangles[std::size_t(k)] / views,
-                        {},
-                        fmt::format("{:.0f} triangles hidden a frame; alternating view by view",
-                                    occluded[std::size_t(k)] / views)});
-        print(scene, {"occlusion",
-                      fmt::format("speedup-occlusion-{}", name),
-                      t[0].size(),
-                      percentile(t[1], 0.5) / std::max(1e-9, percentile(t[0], 0.5)),
-                      percentile(t[1], 0.99) / std::max(1e-9, percentile(t[0], 0.99)),
-                      0,
-                      0,
-                      {},
-                      "unculled / occlusion culled: p50 column at p50, p99 column at p99"});
-      }
-    }
+    };
+    // Draw order: opaque clusters nearest first (the kiosk's default) against the compiler's order (fewer,
+    // merged ranges). Same pixels (NearestFirstFrameEqualsCompilerOrderFrame); the difference is the shading
+    // llvmpipe's early depth test spares, which its fragment count does not show (it counts before the test).
+    alternate(
+        "order", "nearest-first", "compiler-order", "speedup-nearest-first", "compiler order / nearest first",
+        [&](bool on) { renderer.set_nearest_first(on); }, true, false,
+        [](const Sums& s, double views) {
+          return fmt::format("{:.0f} draw ranges; alternating view by view", s.ranges / views);
+        });
+    // Occlusion culling: the nearest walls rasterised into a small software depth buffer and the clusters
+    // they hide left out (the kiosk's default), against drawing what the PVS, frustum and portals leave. Same
+    // pixels (OcclusionCulledFrameEqualsUnculledFrame).
+    alternate(
+        "occlusion", "occlusion-culled", "unculled", "speedup-occlusion", "unculled / occlusion culled",
+        [&](bool on) { renderer.set_occlusion_culling(on); }, o.occlusion, true,
+        [](const Sums& s, double views) {
+          return fmt::format("{:.0f} triangles hidden a frame; alternating view by view", s.occluded / views);
+        });
     {
       // The light as the compiler chose it per circuit (compact where within its limit) against every
       // circuit full: frame time, display memory and image error, alternating view by view.
