@@ -14,6 +14,7 @@ find_package(nlohmann_json 3 REQUIRED)  # walkd's summary.json
 pkg_check_modules(TOMLPP REQUIRED IMPORTED_TARGET tomlplusplus)
 pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)  # inputs-unchanged hashes (common/hash)
 pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)
+pkg_check_modules(PIXMAN REQUIRED IMPORTED_TARGET pixman-1)  # the half-resolution level's CPU upscale
 find_package(assimp REQUIRED)  # mesh import (OBJ, glTF, 3DS...); Debian ships its CMake config
 pkg_check_modules(SYSTEMD REQUIRED IMPORTED_TARGET libsystemd)
 

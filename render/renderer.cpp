@@ -34,6 +34,7 @@
 #include "render/shader.hpp"
 #include "render/subdivision.hpp"
 #include "render/tonemap.hpp"
+#include "render/upscale.hpp"
 
 namespace walk::render {
 
@@ -131,6 +132,11 @@ struct Renderer::Impl {
   std::uint32_t cells_seen = 0;  // reached by that walk
   Framebuffer framebuffer;
   Framebuffer reduced_framebuffer;  // the Reduced moving level draws here, then scales up
+  // Scaling up on the CPU (upscale.hpp): set_cpu_upscale's choice, else where GL rasterises on the CPU too.
+  std::optional<bool> cpu_upscale;
+  bool software = false;  // software_rasterizer(), asked once
+  std::vector<std::uint8_t> reduced_pixels, upscaled_pixels;
+  void upscale_on_cpu(const Framebuffer& source, int width, int height, int full_width, int full_height);
 
   std::vector<float> levels;
   std::optional<float> exposure_override;  // set_exposure: radiosity shown as white, instead of META's
@@ -454,6 +460,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
     : impl_(std::make_unique<Impl>(bundle, light_form)) {
   auto& r = *impl_;
+  r.software = software_rasterizer();
   const auto vertices = bundle.vertices();
   const std::size_t circuits = bundle.circuits().size();
   if (circuits > std::size_t(kMaxCircuits))
@@ -612,6 +619,9 @@ void Renderer::set_portal_culling(bool enabled) {
   impl_->portal_culling = enabled;
 }
 
+void Renderer::set_cpu_upscale(std::optional<bool> enabled) {
+  impl_->cpu_upscale = enabled;
+}
 void Renderer::set_occlusion_culling(bool enabled) {
   impl_->occlusion_culling = enabled;
   impl_->view_key.reset();
@@ -851,9 +861,13 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   }
   if (reduced) {
     r.framebuffer.ensure_size(full_width, full_height);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, target.id());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.framebuffer.id());
-    glBlitFramebuffer(0, 0, width, height, 0, 0, full_width, full_height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    if (r.cpu_upscale.value_or(r.software)) {
+      r.upscale_on_cpu(target, width, height, full_width, full_height);
+    } else {
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, target.id());
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.framebuffer.id());
+      glBlitFramebuffer(0, 0, width, height, 0, 0, full_width, full_height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl("drawing a frame");
@@ -868,6 +882,22 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
   r.stats.patch_weight = std::clamp(options.patch_weight, 0.0f, 1.0f);
   r.stats.resolution = reduced ? std::max(0.1f, options.resolution) : 1.0f;
   ++r.stats.frames_drawn;
+}
+
+// Read back, scaled up by pixman, written into the frame's colour texture: both copies are memcpy-like in
+// llvmpipe (0.1 and 0.5 ms at 1280x720), unlike a blit, which shades every full-size pixel.
+void Renderer::Impl::upscale_on_cpu(const Framebuffer& source, int width, int height, int full_width,
+                                    int full_height) {
+  reduced_pixels.resize(4 * std::size_t(width) * std::size_t(height));
+  upscaled_pixels.resize(4 * std::size_t(full_width) * std::size_t(full_height));
+  // RGBA8 rows are whole words, so the default pack and unpack alignment of 4 leaves no padding.
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, source.id());
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, reduced_pixels.data());
+  scale_bilinear(reduced_pixels, width, height, upscaled_pixels, full_width, full_height);
+  glBindTexture(GL_TEXTURE_2D, framebuffer.colour_texture());
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, full_width, full_height, GL_RGBA, GL_UNSIGNED_BYTE,
+                  upscaled_pixels.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 void Renderer::Impl::make_shaded_program() {
@@ -1034,9 +1064,9 @@ void Renderer::Impl::choose_diagonals() {
 }
 
 // The first frame down a drawing path costs llvmpipe its JIT compile of that state: the half-resolution
-// level's scaling blit 40-90 ms once, a level's first frame several ms more. Each moving level is drawn
-// once, off the record, at a new frame size, so no moving frame shows the hitch and no cost model learns
-// it (a 90 ms first half-resolution frame made M's governor shun that level).
+// level's scaling blit (where it blits) 40-90 ms once, a level's first frame several ms more. Each moving
+// level is drawn once, off the record, at a new frame size, so no moving frame shows the hitch and no cost
+// model learns it (a 90 ms first half-resolution frame made M's governor shun that level).
 void Renderer::Impl::warm_up(const View& view, int width, int height) {
   warmed_size = {width, height};
   const FrameStats kept_stats = stats;

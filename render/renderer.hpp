@@ -144,6 +144,11 @@ class Renderer {
   // On by default: a cell where occlusion culling hides little rests from it for a while
   // (culling_policy.hpp). Off: every view is culled (the pixel tests).
   void set_adaptive_occlusion_culling(bool enabled);
+  // How the Reduced level's half-size frame is scaled up to the full size: nullopt (the default) on the CPU
+  // where GL rasterises on the CPU too (llvmpipe at 1280x720: 1.5 ms against a GL_LINEAR blit's 5-7 ms;
+  // upscale.hpp), else by the blit; true or false forces one. At an even frame size the two differ by at most
+  // 1 in a channel.
+  void set_cpu_upscale(std::optional<bool> enabled);
   // On by default: opaque clusters are drawn nearest first (by their boxes' distance from the eye), so the
   // depth test, which llvmpipe makes before shading, spares the fragments they hide. Off: the compiler's
   // order, whose neighbouring clusters merge into fewer draw ranges. Either way the same picture.

@@ -14,8 +14,8 @@ packages=(
   libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libpolyclipping-dev libpng-dev libjpeg-dev
   # parallel loops of the compiler stages, and the inputs-unchanged hashes
   libtbb-dev libxxhash-dev
-  # levels of detail of clusters for moving frames
-  libmeshoptimizer-dev
+  # levels of detail of clusters for moving frames; the half-resolution level's CPU upscale
+  libmeshoptimizer-dev libpixman-1-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
   # the Debian package: man pages from --help, and its check; the source format check

@@ -42,8 +42,9 @@ struct Options {
   int frames = 240;
   double target_hz = 60.0;
   std::string frame_timing = "auto";
-  bool portals = true;    // the governed, level and AA sections walk the portals (the kiosk's default)
-  bool occlusion = true;  // ... and cull by occlusion (the kiosk's default)
+  bool portals = true;        // the governed, level and AA sections walk the portals (the kiosk's default)
+  bool occlusion = true;      // ... and cull by occlusion (the kiosk's default)
+  bool blit_upscale = false;  // the half-resolution level scaled up by a GL blit even on a software GL
 };
 
 double ms_since(Clock::time_point t0) {
@@ -208,6 +209,8 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
     auto backend = render::Backend::create(bo);
     backend->make_current();
     render::Renderer renderer(*bundle);
+    const std::optional<bool> cpu_upscale = o.blit_upscale ? std::optional(false) : std::nullopt;
+    renderer.set_cpu_upscale(cpu_upscale);
     const auto walk = scripted_walk(*bundle, o.frames);
     Progress progress("bench render " + scene, 0, "frames");
     std::cerr << "backend " << backend->name() << ", " << bundle->polygons().size() << " polygons, "
@@ -361,7 +364,8 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
         error.mae_linear += e.mae_linear / double(reference.size());
         error.over_2_percent += e.over_2_percent / double(reference.size());
       }
-      // Fragments include the reduced level's scaled copy to full size: a full frame's pixels once more.
+      // Fragments include the reduced level's scaled copy to full size where a blit makes it: a full frame's
+      // pixels once more.
       const double views = double(t.size());
       const std::string shading =
           ShadingCount::available()
@@ -455,61 +459,63 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
                       "one view"});
       }
     }
-    // An A/B of one renderer switch at the simplified level and at full detail, alternating view by view
-    // (every second view) so the machine's noise falls on both alike: `set(true)` is the variant,
-    // `set(false)` the one it is compared with. Prints a row for each (`note` describes it from its frames'
-    // summed stats) and a speedup row (other / variant), then leaves the switch as the run has it
+    // An A/B of one renderer switch at each of `at` (the simplified level and full detail, or the half-res
+    // level), alternating view by view (every second view) so the machine's noise falls on both alike:
+    // `set(true)` is the variant, `set(false)` the one it is compared with. Prints a row for each (`note`
+    // describes it from its frames' summed stats) and a speedup row (other / variant), then leaves the switch
+    // as the run has it
     // (`set(kept)`).
     struct Sums {
       double ranges = 0.0, triangles = 0.0, occluded = 0.0;
     };
-    auto alternate = [&](const char* section, const char* variant, const char* other, const char* speedup,
-                         const char* ratio, const std::function<void(bool)>& set, bool kept,
-                         bool triangles_column,
-                         const std::function<std::string(const Sums&, double views)>& note) {
-      constexpr std::size_t kViewStride = 2;
-      for (const auto& [name, options] :
-           {std::pair{"simplified", render::DrawOptions{.patch_weight = 0.0f,
-                                    .lod_pixels = render::kSimplifiedErrorPixels}},
-            std::pair{"patches", full}}) {
-        std::array<std::vector<double>, 2> t;  // variant, other
-        std::array<Sums, 2> sums{};
-        for (std::size_t i = 0; i < walk.size(); i += kViewStride)
-          for (const int k : {0, 1}) {
-            set(k == 0);
-            const auto t0 = Clock::now();
-            renderer.draw(walk[i], width, height, options);
-            glFinish();
-            t[std::size_t(k)].push_back(ms_since(t0));
-            const auto& st = renderer.last_stats();
-            sums[std::size_t(k)].ranges += st.draw_ranges;
-            sums[std::size_t(k)].triangles += st.triangles_drawn;
-            sums[std::size_t(k)].occluded += st.triangles_occluded;
-            progress.advance();
+    using NamedOptions = std::vector<std::pair<const char*, render::DrawOptions>>;
+    const NamedOptions simplified_and_patches{
+        {"simplified", {.patch_weight = 0.0f, .lod_pixels = render::kSimplifiedErrorPixels}},
+        {"patches", full}};
+    auto alternate =
+        [&](const char* section, const char* variant, const char* other, const char* speedup,
+            const char* ratio, const std::function<void(bool)>& set, bool kept, bool triangles_column,
+            const std::function<std::string(const Sums&, double views)>& note, const NamedOptions& at) {
+          constexpr std::size_t kViewStride = 2;
+          for (const auto& [name, options] : at) {
+            std::array<std::vector<double>, 2> t;  // variant, other
+            std::array<Sums, 2> sums{};
+            for (std::size_t i = 0; i < walk.size(); i += kViewStride)
+              for (const int k : {0, 1}) {
+                set(k == 0);
+                const auto t0 = Clock::now();
+                renderer.draw(walk[i], width, height, options);
+                glFinish();
+                t[std::size_t(k)].push_back(ms_since(t0));
+                const auto& st = renderer.last_stats();
+                sums[std::size_t(k)].ranges += st.draw_ranges;
+                sums[std::size_t(k)].triangles += st.triangles_drawn;
+                sums[std::size_t(k)].occluded += st.triangles_occluded;
+                progress.advance();
+              }
+            set(kept);
+            const double views = double(t[0].size());
+            for (const int k : {0, 1})
+              print(scene, {section,
+                            fmt::format("{}-{}", k == 0 ? variant : other, name),
+                            t[std::size_t(k)].size(),
+                            percentile(t[std::size_t(k)], 0.5),
+                            percentile(t[std::size_t(k)], 0.99),
+                            0,
+                            triangles_column ? sums[std::size_t(k)].triangles / views : 0.0,
+                            {},
+                            note(sums[std::size_t(k)], views)});
+            print(scene, {section,
+                          fmt::format("{}-{}", speedup, name),
+                          t[0].size(),
+                          percentile(t[1], 0.5) / std::max(1e-9, percentile(t[0], 0.5)),
+                          percentile(t[1], 0.99) / std::max(1e-9, percentile(t[0], 0.99)),
+                          0,
+                          0,
+                          {},
+                          fmt::format("{}: p50 column at p50, p99 column at p99", ratio)});
           }
-        set(kept);
-        const double views = double(t[0].size());
-        for (const int k : {0, 1})
-          print(scene, {section,
-                        fmt::format("{}-{}", k == 0 ? variant : other, name),
-                        t[std::size_t(k)].size(),
-                        percentile(t[std::size_t(k)], 0.5),
-                        percentile(t[std::size_t(k)], 0.99),
-                        0,
-                        triangles_column ? sums[std::size_t(k)].triangles / views : 0.0,
-                        {},
-                        note(sums[std::size_t(k)], views)});
-        print(scene, {section,
-                      fmt::format("{}-{}", speedup, name),
-                      t[0].size(),
-                      percentile(t[1], 0.5) / std::max(1e-9, percentile(t[0], 0.5)),
-                      percentile(t[1], 0.99) / std::max(1e-9, percentile(t[0], 0.99)),
-                      0,
-                      0,
-                      {},
-                      fmt::format("{}: p50 column at p50, p99 column at p99", ratio)});
-      }
-    };
+        };
     // Draw order: opaque clusters nearest first (the kiosk's default) against the compiler's order (fewer,
     // merged ranges). Same pixels (NearestFirstFrameEqualsCompilerOrderFrame); the difference is the shading
     // llvmpipe's early depth test spares, which its fragment count does not show (it counts before the test).
@@ -518,7 +524,8 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
         [&](bool on) { renderer.set_nearest_first(on); }, true, false,
         [](const Sums& s, double views) {
           return fmt::format("{:.0f} draw ranges; alternating view by view", s.ranges / views);
-        });
+        },
+        simplified_and_patches);
     // Occlusion culling: the nearest walls rasterised into a small software depth buffer and the clusters
     // they hide left out (the kiosk's default), against drawing what the PVS, frustum and portals leave. Same
     // pixels (OcclusionCulledFrameEqualsUnculledFrame).
@@ -527,7 +534,17 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
         [&](bool on) { renderer.set_occlusion_culling(on); }, o.occlusion, true,
         [](const Sums& s, double views) {
           return fmt::format("{:.0f} triangles hidden a frame; alternating view by view", s.occluded / views);
-        });
+        },
+        simplified_and_patches);
+    // The half-resolution level's scaling up: read back, doubled on the CPU and uploaded (upscale.hpp; the
+    // default on a software GL) against a GL_LINEAR blit. Within 1 in a channel
+    // (CpuUpscaleIsWithinOneOfTheBlitAndOddSizesBlit).
+    alternate(
+        "upscale", "cpu-upscale", "blit", "speedup-cpu-upscale", "blit / CPU upscale",
+        [&](bool on) { renderer.set_cpu_upscale(on); }, true, false,
+        [](const Sums&, double) { return std::string("alternating view by view"); },
+        {{"half-res", levels.front().options}});
+    renderer.set_cpu_upscale(cpu_upscale);
     {
       // The light as the compiler chose it per circuit (compact where within its limit) against every
       // circuit full: frame time, display memory and image error, alternating view by view.
@@ -682,6 +699,9 @@ void add_bench_render_command(CLI::App& bench, int& exit_code) {
   cmd->add_flag("--occlusion,!--no-occlusion", o->occlusion,
                 "Cull by occlusion in the governed, level and AA sections (default on, as the kiosk); "
                 "--no-occlusion draws what the PVS, frustum and portals leave, to compare runs");
+  cmd->add_flag("--blit-upscale", o->blit_upscale,
+                "Scale the half-resolution level up by a GL blit even on a software GL (default: on the CPU "
+                "there, upscale.hpp), to compare runs; the upscale section compares both either way");
   cmd->callback([o, &exit_code] { exit_code = run(*o); });
 }
 

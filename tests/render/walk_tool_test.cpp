@@ -152,6 +152,9 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
                           "occlusion,unculled-patches,6,",
                           "occlusion,speedup-occlusion-patches,",
                           "walk,culled+frustum+portals+occlusion,12,",
+                          "upscale,cpu-upscale-half-res,6,",
+                          "upscale,blit-half-res,6,",
+                          "upscale,speedup-cpu-upscale-half-res,",
                           "aa,1-samples,",
                           "aa,64-samples,"})
     EXPECT_NE(output.find(row), std::string::npos) << "missing '" << row << "' in:\n" << output;
@@ -175,12 +178,12 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
   ASSERT_NE(shaded, std::string::npos) << row;
   EXPECT_GT(std::stod(row.substr(shaded + 2)), 0.5 * 160 * 120) << row;
   EXPECT_NE(row.find("vertices shaded a frame"), std::string::npos) << row;
-  // Two bundles and --plot (and --no-portals, which the CLI must take): one table each (one header) and a
-  // size summary with a row per bundle.
+  // Two bundles and --plot (and --no-portals and --blit-upscale, which the CLI must take): one table each
+  // (one header) and a size summary with a row per bundle.
   const std::string plot = bundle->path() + ".size.png";
   std::string twice;
   ASSERT_EQ(run(kWalk + " bench render " + bundle->path() + " " + bundle->path() +
-                    " --backend osmesa --size 160x120 --frames 12 --no-portals --plot " + plot,
+                    " --backend osmesa --size 160x120 --frames 12 --no-portals --blit-upscale --plot " + plot,
                 twice),
             0)
       << twice;
