@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <numeric>
 
@@ -212,6 +213,14 @@ std::vector<std::uint32_t> all_units(const ClusterLayout& layout) {
   return units;
 }
 
+bool too_small_to_draw(const ClusterLayout& layout, std::uint32_t u, const LodChoice& lod) {
+  if (!lod.leave_out_small || !(lod.max_pixels > 0.0f)) return false;
+  const Box& box = layout.boxes[u];
+  const float allowed = lod.max_pixels / lod.pixels_per_radian * distance_to(lod.eye, box);
+  const glm::vec3 size(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]);
+  return glm::length(size) <= allowed;
+}
+
 int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u, const LodChoice& lod) {
   if (form.lod.empty() || !(lod.max_pixels > 0.0f)) return 0;
   // The error's angle seen from the nearest point of the box, in pixels: error / distance radians.
@@ -224,7 +233,8 @@ int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_
 
 DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
                            std::span<const std::uint32_t> units, const Frustum* frustum, const LodChoice* lod,
-                           const PortalView* portals, const glm::vec3* nearest_first) {
+                           const PortalView* portals, const glm::vec3* nearest_first,
+                           std::uint32_t run_triangles) {
   DrawList list;
   std::uint64_t opaque_end = 0, glass_end = 0;
   struct Opaque {
@@ -236,6 +246,7 @@ DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
   for (const std::uint32_t u : units) {
     if (u >= layout.units() || layout.drawn[u] == 0) continue;
     if (frustum && !frustum->touches(layout.boxes[u])) continue;
+    if (lod && too_small_to_draw(layout, u, *lod)) continue;
     const int level = lod ? lod_level(layout, form, u, *lod) : 0;
     const IndexRange opaque = level == 0 ? form.opaque[u] : form.lod[u][std::size_t(level - 1)];
     if (portals && !portals->shows(u)) {
@@ -251,6 +262,20 @@ DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
       append(list.opaque, opaque, opaque_end);
     append(list.glass, form.glass[u], glass_end);
   }
+  // Runs of units adjacent in the buffer, up to run_triangles each, sorted as one by their nearest unit.
+  const std::uint64_t run_indices = 3 * std::uint64_t(run_triangles);
+  std::size_t runs = 0;
+  for (const Opaque& o : opaque_units) {
+    Opaque& last = opaque_units[runs == 0 ? 0 : runs - 1];
+    if (runs > 0 && last.range.first + last.range.count == o.range.first &&
+        last.range.count + o.range.count <= run_indices) {
+      last.range.count += o.range.count;
+      last.distance = std::min(last.distance, o.distance);
+    } else {
+      opaque_units[runs++] = o;
+    }
+  }
+  opaque_units.resize(runs);
   std::sort(opaque_units.begin(), opaque_units.end(), [](const Opaque& a, const Opaque& b) {
     return a.distance < b.distance || (a.distance == b.distance && a.unit < b.unit);
   });
@@ -262,7 +287,7 @@ std::uint32_t triangles_of(const ClusterLayout& layout, const LaidOutForm& form,
                            std::span<const std::uint32_t> units, const LodChoice* lod) {
   std::uint32_t triangles = 0;
   for (const std::uint32_t u : units) {
-    if (u >= layout.units()) continue;
+    if (u >= layout.units() || (lod && too_small_to_draw(layout, u, *lod))) continue;
     const int level = lod ? lod_level(layout, form, u, *lod) : 0;
     const IndexRange opaque = level == 0 ? form.opaque[u] : form.lod[u][std::size_t(level - 1)];
     triangles += (opaque.count + form.glass[u].count) / 3;

@@ -64,6 +64,7 @@ struct LodChoice {
   glm::vec3 eye{0.0f};
   float pixels_per_radian = 1.0f;  // image height / vertical field of view (radians), near the centre
   float max_pixels = 0.0f;         // 0: full detail
+  bool leave_out_small = true;     // too_small_to_draw units are left out
 };
 
 struct ClusterLayout {
@@ -88,17 +89,26 @@ struct ClusterLayout {
 
 // The draw list of `units` (sorted) in `form`, less the units whose box lies outside `frustum` and those
 // `portals` does not show, when given; ranges that meet are merged.
-// With `lod` (and a form that has levels), each unit's opaque range is its level's. With `nearest_first`
-// (the eye), the opaque ranges go in order of their units' box distance from it, ties by unit, so an early
-// depth test can reject what nearer units hide; ranges then merge only where that order keeps them adjacent.
-// Glass keeps the units' order.
+// With `lod`, units too small to draw are left out and (in a form that has levels) each unit's opaque
+// range is its level's. With `nearest_first`
+// (the eye), the opaque ranges go in order of their distance from it, ties by unit, so an early depth test
+// can reject what nearer units hide: units adjacent in the buffer form runs of up to `run_triangles`, each
+// run placed by its nearest unit's box distance (0: every unit on its own); ranges then merge only where
+// that order keeps them adjacent. Glass keeps the units' order.
 [[nodiscard]] DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
                                          std::span<const std::uint32_t> units, const Frustum* frustum,
                                          const LodChoice* lod = nullptr, const PortalView* portals = nullptr,
-                                         const glm::vec3* nearest_first = nullptr);
-// The triangles `units` draw in `form`, each at the level `lod` picks (its own range without).
+                                         const glm::vec3* nearest_first = nullptr,
+                                         std::uint32_t run_triangles = kNearestFirstRunTriangles);
+// The triangles `units` draw in `form`, each at the level `lod` picks (its own range without), less those
+// too small to draw.
 [[nodiscard]] std::uint32_t triangles_of(const ClusterLayout& layout, const LaidOutForm& form,
                                          std::span<const std::uint32_t> units, const LodChoice* lod);
+// Whether unit `u` is left out of a frame with a pixel budget: its whole box (the diagonal) spans at most
+// `max_pixels` seen from the box's nearest point, so leaving it out moves what the frame shows by no more
+// than a level of detail within the budget would (Funkhouser & Sequin's detail elision). Never at full
+// detail (max_pixels 0), nor with the eye in its box.
+[[nodiscard]] bool too_small_to_draw(const ClusterLayout& layout, std::uint32_t u, const LodChoice& lod);
 // The level `lod` picks for unit `u` of `form` (0: its own range; l + 1: LOD level l).
 [[nodiscard]] int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u,
                             const LodChoice& lod);

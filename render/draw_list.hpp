@@ -15,6 +15,12 @@ struct DrawBatch {
   [[nodiscard]] bool empty() const { return counts.empty(); }
 };
 
+// Nearest-first drawing sorts runs of adjacent units, not single units, up to this many triangles a run.
+// llvmpipe pays about 0.6 us a draw range: Sibenik's 3,900 clusters of 3 triangles each, sorted one by one
+// into 3,815 ranges a frame, drew 1.1x slower than in the compiler's order (204 ranges). The depth order
+// needs no finer grain than a few hundred triangles; a cluster larger than that is still its own run.
+inline constexpr std::uint32_t kNearestFirstRunTriangles = 256;
+
 // Glass is kept apart: it is drawn after everything opaque, blended, so rooms show through windows.
 struct DrawList {
   DrawBatch opaque;

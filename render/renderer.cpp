@@ -153,6 +153,8 @@ struct Renderer::Impl {
   bool pvs_culling = true;
   bool frustum_culling = true;
   bool nearest_first = true;
+  std::uint32_t run_triangles = kNearestFirstRunTriangles;
+  bool detail_elision = true;  // LodChoice::leave_out_small
   bool portal_culling = true;
   std::optional<PortalView> portal_view;  // when the bundle has portals
   // Occlusion culling: the occluders found at load time, and the last view they were rasterised for.
@@ -274,7 +276,7 @@ struct Renderer::Impl {
                       bool counts_only = false) {
     const Frustum frustum(view_projection_matrix);
     const LodChoice lod{glm::vec3(view.eye), float(double(full_height) / vertical_field_of_view(view)),
-                        coarse ? lod_pixels : 0.0f};
+                        coarse ? lod_pixels : 0.0f, detail_elision};
     const std::vector<std::uint32_t>* units = &units_for(cell);
     const PortalView* portals = nullptr;
     if (cell < bundle.cells().size()) {
@@ -338,7 +340,7 @@ struct Renderer::Impl {
     const LaidOutForm& form = coarse ? layout.coarse : layout.fine;
     const LodChoice* lod_choice = lod.max_pixels > 0.0f ? &lod : nullptr;
     DrawList list = cluster_draw_list(layout, form, view_units, nullptr, lod_choice, nullptr,
-                                      nearest_first && !counts_only ? &lod.eye : nullptr);
+                                      nearest_first && !counts_only ? &lod.eye : nullptr, run_triangles);
     if (!counts_only) {
       list.triangles_behind_portals = triangles_of(layout, form, behind_portals, lod_choice);
       list.triangles_occluded = triangles_of(layout, form, occluded_units, lod_choice);
@@ -637,8 +639,13 @@ void Renderer::set_adaptive_portal_culling(bool enabled) {
   impl_->seen_cell = FrameStats::kNoCell;  // decide afresh for the next view
 }
 
-void Renderer::set_nearest_first(bool enabled) {
+void Renderer::set_nearest_first(bool enabled, std::uint32_t run_triangles) {
   impl_->nearest_first = enabled;
+  impl_->run_triangles = run_triangles;
+}
+
+void Renderer::set_detail_elision(bool enabled) {
+  impl_->detail_elision = enabled;
 }
 
 void Renderer::set_frustum_culling(bool enabled) {

@@ -11,6 +11,7 @@
 
 #include "model/bundle.hpp"
 #include "render/display_light.hpp"
+#include "render/draw_list.hpp"
 #include "render/governor.hpp"
 #include "render/gpu_timer.hpp"
 #include "render/refine_schedule.hpp"
@@ -150,9 +151,14 @@ class Renderer {
   // 1 in a channel.
   void set_cpu_upscale(std::optional<bool> enabled);
   // On by default: opaque clusters are drawn nearest first (by their boxes' distance from the eye), so the
-  // depth test, which llvmpipe makes before shading, spares the fragments they hide. Off: the compiler's
-  // order, whose neighbouring clusters merge into fewer draw ranges. Either way the same picture.
-  void set_nearest_first(bool enabled);
+  // depth test, which llvmpipe makes before shading, spares the fragments they hide; clusters adjacent in
+  // the buffer go as runs of up to `run_triangles` (0: each on its own). Off: the compiler's order, whose
+  // neighbouring clusters merge into fewer draw ranges. Either way the same picture.
+  void set_nearest_first(bool enabled, std::uint32_t run_triangles = kNearestFirstRunTriangles);
+  // On by default: a moving level with a pixel budget leaves out clusters whose whole box spans no more than
+  // it (cluster_layout.hpp too_small_to_draw), as a level of detail within the budget may move a surface
+  // that far. Full-detail frames draw everything either way.
+  void set_detail_elision(bool enabled);
   void draw(const View& view, int width, int height);
   void draw(const View& view, int width, int height, const DrawOptions& options);
 

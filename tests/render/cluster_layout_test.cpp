@@ -136,8 +136,9 @@ TEST(ClusterLayout, TheFrustumDropsClustersWhollyBehindTheEyeAndKeepsThoseAcross
   EXPECT_TRUE(frustum.touches(Box{{1.4f, 0.4f, 0.4f}, {1.6f, 0.6f, 0.6f}})) << "a box around the eye is";
 }
 
-// Nearest first: opaque ranges by their boxes' distance from the eye (0 for a box around it), equal
-// distances by unit, units still adjacent merged; glass in the units' order whatever the eye.
+// Nearest first, each unit on its own (runs of 0 triangles): opaque ranges by their boxes' distance from the
+// eye (0 for a box around it), equal distances by unit, units still adjacent merged; glass in the units'
+// order whatever the eye.
 TEST(ClusterLayout, NearestFirstOrdersOpaqueRangesByBoxDistanceAndKeepsGlassInOrder) {
   Scene s({R::Opaque, R::Opaque, R::Opaque, R::Opaque, R::Opaque, R::Glass, R::Glass});
   for (std::uint32_t p = 0; p < 5; ++p) s.cluster({p});
@@ -155,7 +156,7 @@ TEST(ClusterLayout, NearestFirstOrdersOpaqueRangesByBoxDistanceAndKeepsGlassInOr
   // unit order), 2 at 1.5, 1 at 2.5, 0 at 3.5.
   const glm::vec3 eye(3.5f, 0.5f, 0.5f);
   const DrawList near =
-      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &eye);
+      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &eye, 0);
   EXPECT_EQ(offsets_in_units(near.opaque), (std::vector<std::uint32_t>{3, 4, 2, 1, 0}));
   EXPECT_EQ(near.opaque.counts.size(), 4u) << "3 and 4 stay adjacent and merge";
   ASSERT_EQ(near.glass.counts.size(), 1u);
@@ -164,13 +165,68 @@ TEST(ClusterLayout, NearestFirstOrdersOpaqueRangesByBoxDistanceAndKeepsGlassInOr
   // An eye inside square 1's box (distance 0) draws it first; the same units and triangles as without an eye.
   const glm::vec3 inside(1.0f, 0.5f, 0.5f);
   const DrawList from_one =
-      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &inside);
+      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &inside, 0);
   EXPECT_EQ(offsets_in_units(from_one.opaque), (std::vector<std::uint32_t>{1, 0, 2, 3, 4}));
   const DrawList in_order = cluster_draw_list(layout, layout.fine, all_units(layout), nullptr);
   EXPECT_EQ(offsets_in_units(in_order.opaque), (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
   EXPECT_EQ(in_order.opaque.counts.size(), 1u);
   EXPECT_EQ(from_one.triangles, in_order.triangles);
   EXPECT_EQ(from_one.polygons, in_order.polygons);
+}
+
+// Nearest first in runs: units adjacent in the buffer go together up to the run's triangles, placed by
+// their nearest unit (ties by their first unit); a unit larger than a run is its own.
+TEST(ClusterLayout, NearestFirstSortsRunsOfAdjacentUnitsUpToTheirTriangles) {
+  Scene s({R::Opaque, R::Opaque, R::Opaque, R::Opaque, R::Opaque});
+  for (std::uint32_t p = 0; p < 5; ++p) s.cluster({p});
+  const ClusterLayout layout = lay_out_clusters(s.input());
+  const auto firsts = [](const DrawBatch& batch) {
+    std::vector<std::uint32_t> units;
+    for (const std::uintptr_t offset : batch.byte_offsets) units.push_back(std::uint32_t(offset / 4 / 6));
+    return units;
+  };
+  // Squares (2 triangles each) at x = 0 .. 5; the eye at x = 3.5. Runs of 4 triangles: {0, 1} (nearest 2.5),
+  // {2, 3} (0.5), {4} (0.5, after {2, 3} by its first unit). {2, 3} and {4} meet again in the buffer.
+  const glm::vec3 eye(3.5f, 0.5f, 0.5f);
+  const DrawList runs =
+      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &eye, 4);
+  EXPECT_EQ(firsts(runs.opaque), (std::vector<std::uint32_t>{2, 0}));
+  EXPECT_EQ(runs.opaque.counts, (std::vector<std::int32_t>{18, 12}));
+  // Runs of 1 triangle: smaller than a unit, so each unit is its own run.
+  const DrawList single =
+      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &eye, 1);
+  EXPECT_EQ(firsts(single.opaque), (std::vector<std::uint32_t>{3, 2, 1, 0}));
+  // The default run holds all five: the compiler's order, one range.
+  const DrawList whole =
+      cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, nullptr, nullptr, &eye);
+  EXPECT_EQ(firsts(whole.opaque), (std::vector<std::uint32_t>{0}));
+  EXPECT_EQ(whole.opaque.counts, (std::vector<std::int32_t>{30}));
+  EXPECT_EQ(whole.triangles, runs.triangles);
+}
+
+// A cluster whose whole box (a unit square: diagonal sqrt 2 m) spans at most the pixel budget is left out,
+// at the budget's edge included; never at full detail, nor with the eye in its box. 100 pixels a radian:
+// the square spans 1 pixel at 141.42 m.
+TEST(ClusterLayout, ClustersSmallerThanThePixelBudgetAreLeftOut) {
+  Scene s({R::Opaque, R::Opaque});
+  s.cluster({0});
+  s.cluster({1});
+  const ClusterLayout layout = lay_out_clusters(s.input());
+  LodChoice lod{glm::vec3(-141.0f, 0.5f, 0.5f), 100.0f, 1.0f};
+  EXPECT_FALSE(too_small_to_draw(layout, 0, lod)) << "141 m: 1.003 pixels";
+  lod.eye.x = -142.0f;
+  EXPECT_TRUE(too_small_to_draw(layout, 0, lod)) << "142 m: 0.996 pixels";
+  lod.max_pixels = 0.0f;
+  EXPECT_FALSE(too_small_to_draw(layout, 0, lod)) << "full detail draws everything";
+  lod = {glm::vec3(0.0f, 0.5f, 0.5f), 1e-6f, 1e9f};
+  EXPECT_FALSE(too_small_to_draw(layout, 0, lod)) << "the eye in its box: distance 0";
+  // Square 0 at 141.9 m spans 0.99660 pixels, square 1 at 142.9 m 0.98963: a budget of 0.9931 between.
+  lod = {glm::vec3(-141.9f, 0.5f, 0.5f), 100.0f, 0.9931f};
+  const DrawList list = cluster_draw_list(layout, layout.fine, all_units(layout), nullptr, &lod);
+  EXPECT_EQ(list.units, (std::vector<std::uint32_t>{0}));
+  EXPECT_EQ(list.triangles, 2u);
+  EXPECT_EQ(triangles_of(layout, layout.fine, all_units(layout), &lod), 2u) << "the same count";
+  EXPECT_EQ(triangles_of(layout, layout.fine, all_units(layout), nullptr), 4u);
 }
 
 // Two clusters of two squares each (the squares' coarse form is their fine form) with one level of detail
