@@ -107,7 +107,8 @@ struct ClusterLayout {
 // Whether unit `u` is left out of a frame with a pixel budget: its whole box (the diagonal) spans at most
 // `max_pixels` seen from the box's nearest point, so leaving it out moves what the frame shows by no more
 // than a level of detail within the budget would (Funkhouser & Sequin's detail elision). Never at full
-// detail (max_pixels 0), nor with the eye in its box.
+// detail (max_pixels 0), nor with the eye in its box. Such a cluster spans under a cell of the occlusion
+// buffer (about 11 pixels at 1280 wide), so as an occluder it never covered one whole and hid nothing.
 [[nodiscard]] bool too_small_to_draw(const ClusterLayout& layout, std::uint32_t u, const LodChoice& lod);
 // The level `lod` picks for unit `u` of `form` (0: its own range; l + 1: LOD level l).
 [[nodiscard]] int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u,

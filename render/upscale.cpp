@@ -18,8 +18,8 @@ struct ImageRelease {
 };
 using PixmanImage = std::unique_ptr<pixman_image_t, ImageRelease>;
 
-// pixman's names are for the packed 32-bit word: a8b8g8r8 is bytes R, G, B, A in memory on a little-endian
-// machine, x8r8g8b8's cousin on a big-endian one.
+// pixman's names read the packed 32-bit word from its top byte: bytes R, G, B, A in memory are a8b8g8r8 on
+// a little-endian machine and r8g8b8a8 on a big-endian one.
 constexpr pixman_format_code_t kRgbaBytes =
     std::endian::native == std::endian::little ? PIXMAN_a8b8g8r8 : PIXMAN_r8g8b8a8;
 
