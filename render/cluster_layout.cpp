@@ -213,18 +213,26 @@ std::vector<std::uint32_t> all_units(const ClusterLayout& layout) {
   return units;
 }
 
+namespace {
+
+// The error in metres that spans `lod.max_pixels` seen from the nearest point of `box`: an error's angle is
+// error / distance radians.
+float allowed_error(const Box& box, const LodChoice& lod) {
+  return lod.max_pixels / lod.pixels_per_radian * distance_to(lod.eye, box);
+}
+
+}  // namespace
+
 bool too_small_to_draw(const ClusterLayout& layout, std::uint32_t u, const LodChoice& lod) {
   if (!lod.leave_out_small || !(lod.max_pixels > 0.0f)) return false;
   const Box& box = layout.boxes[u];
-  const float allowed = lod.max_pixels / lod.pixels_per_radian * distance_to(lod.eye, box);
   const glm::vec3 size(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]);
-  return glm::length(size) <= allowed;
+  return glm::length(size) <= allowed_error(box, lod);
 }
 
 int lod_level(const ClusterLayout& layout, const LaidOutForm& form, std::uint32_t u, const LodChoice& lod) {
   if (form.lod.empty() || !(lod.max_pixels > 0.0f)) return 0;
-  // The error's angle seen from the nearest point of the box, in pixels: error / distance radians.
-  const float allowed = lod.max_pixels / lod.pixels_per_radian * distance_to(lod.eye, layout.boxes[u]);
+  const float allowed = allowed_error(layout.boxes[u], lod);
   int level = 0;
   for (std::uint32_t l = 0; l < model::kLodLevels; ++l)
     if (form.lod_error[u][l] <= allowed) level = int(l) + 1;

@@ -90,11 +90,11 @@ struct ClusterLayout {
 // The draw list of `units` (sorted) in `form`, less the units whose box lies outside `frustum` and those
 // `portals` does not show, when given; ranges that meet are merged.
 // With `lod`, units too small to draw are left out and (in a form that has levels) each unit's opaque
-// range is its level's. With `nearest_first`
-// (the eye), the opaque ranges go in order of their distance from it, ties by unit, so an early depth test
-// can reject what nearer units hide: units adjacent in the buffer form runs of up to `run_triangles`, each
-// run placed by its nearest unit's box distance (0: every unit on its own); ranges then merge only where
-// that order keeps them adjacent. Glass keeps the units' order.
+// range is its level's. With `nearest_first` (the eye), the opaque ranges go in order of their distance
+// from it, ties by unit, so an early depth test can reject what nearer units hide: units adjacent in the
+// buffer form runs of up to `run_triangles`, each run placed by its nearest unit's box distance (0: every
+// unit on its own); ranges then merge only where that order keeps them adjacent. Glass keeps the units'
+// order.
 [[nodiscard]] DrawList cluster_draw_list(const ClusterLayout& layout, const LaidOutForm& form,
                                          std::span<const std::uint32_t> units, const Frustum* frustum,
                                          const LodChoice* lod = nullptr, const PortalView* portals = nullptr,

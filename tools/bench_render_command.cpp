@@ -471,6 +471,7 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
     const NamedOptions simplified_and_patches{
         {"simplified", {.patch_weight = 0.0f, .lod_pixels = render::kSimplifiedErrorPixels}},
         {"patches", full}};
+    const auto plain_note = [](const Sums&, double) { return std::string("alternating view by view"); };
     auto alternate =
         [&](const char* section, const char* variant, const char* other, const char* speedup,
             const char* ratio, const std::function<void(bool)>& set, bool kept, bool triangles_column,
@@ -540,19 +541,15 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
         simplified_and_patches);
     // Detail elision at the moving levels with a pixel budget: clusters whose whole box spans under it left
     // out (the kiosk's default) against drawn at their coarsest level.
-    alternate(
-        "elision", "elided", "drawn", "speedup-elided", "drawn / elided",
-        [&](bool on) { renderer.set_detail_elision(on); }, true, true,
-        [](const Sums&, double) { return std::string("alternating view by view"); },
-        {{"simplified", simplified_and_patches.front().second}, {"half-res", levels.front().options}});
+    alternate("elision", "elided", "drawn", "speedup-elided", "drawn / elided",
+              [&](bool on) { renderer.set_detail_elision(on); }, true, true, plain_note,
+              {{"simplified", simplified_and_patches.front().second}, {"half-res", levels.front().options}});
     // The half-resolution level's scaling up: read back, doubled on the CPU and uploaded (upscale.hpp; the
     // default on a software GL) against a GL_LINEAR blit. Within 1 in a channel
     // (CpuUpscaleIsWithinOneOfTheBlitAndOddSizesBlit).
-    alternate(
-        "upscale", "cpu-upscale", "blit", "speedup-cpu-upscale", "blit / CPU upscale",
-        [&](bool on) { renderer.set_cpu_upscale(on); }, true, false,
-        [](const Sums&, double) { return std::string("alternating view by view"); },
-        {{"half-res", levels.front().options}});
+    alternate("upscale", "cpu-upscale", "blit", "speedup-cpu-upscale", "blit / CPU upscale",
+              [&](bool on) { renderer.set_cpu_upscale(on); }, true, false, plain_note,
+              {{"half-res", levels.front().options}});
     renderer.set_cpu_upscale(cpu_upscale);
     {
       // The light as the compiler chose it per circuit (compact where within its limit) against every
