@@ -79,9 +79,7 @@ TEST_P(MapOverlayTest, TheLeakPathIsDrawnFromTheSeedToTheOpening) {
   auto backend = headless(GetParam());
   TwoRooms scene;
   model::BundleContents contents = make_two_rooms(scene);
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("walk_render_tests_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const auto& dir = test_folder();
   const int side = 108, left = kWidth - side - 8, top = 8;
   auto to_pixel = [&](double x, double y) {
     const double half = 4.0 * 1.05;

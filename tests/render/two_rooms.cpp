@@ -166,11 +166,22 @@ std::unique_ptr<model::Bundle> open_two_rooms(const TwoRooms& scene, const std::
   return open_bundle(make_two_rooms(scene), name);
 }
 
+const std::filesystem::path& test_folder() {
+  struct Folder {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("walk_render_tests_" + std::to_string(::getpid()));
+    Folder() { std::filesystem::create_directories(path); }
+    ~Folder() {
+      std::error_code ignored;  // a folder already gone is no failure at exit
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
+}
+
 std::unique_ptr<model::Bundle> open_bundle(const model::BundleContents& contents, const std::string& name) {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("walk_render_tests_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / (name + ".walk")).string();
+  const std::string path = (test_folder() / (name + ".walk")).string();
   model::write_bundle(path, contents);
   return model::Bundle::open(path);
 }

@@ -3,6 +3,7 @@
 // the shared wall at y 1.5..2.5. Each room has its own albedo; two circuits light them unequally. Radiosity
 // is constant over each polygon, so a pixel's expected colour follows from the display formula alone.
 #include <cstdint>
+#include <filesystem>
 #include <glm/vec3.hpp>
 #include <memory>
 #include <string>
@@ -46,6 +47,9 @@ struct TwoRooms {
 };
 
 [[nodiscard]] model::BundleContents make_two_rooms(const TwoRooms& scene);
+// This process's folder for the files tests write, made on first use and removed at exit: ctest runs each
+// test in a process of its own, and a folder per process left behind piled up in /tmp by the thousand.
+[[nodiscard]] const std::filesystem::path& test_folder();
 // Writes the scene to a unique temporary file and opens it.
 [[nodiscard]] std::unique_ptr<model::Bundle> open_two_rooms(const TwoRooms& scene, const std::string& name);
 // Writes any contents the same way (a scene edited after make_two_rooms).
