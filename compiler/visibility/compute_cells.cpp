@@ -19,6 +19,7 @@
 #include "compiler/visibility/pvs_flow.hpp"
 #include "compiler/visibility/pvs_sampled.hpp"
 #include "compiler/visibility/vis_items.hpp"
+#include "compiler/visibility/voxel_flood.hpp"
 #include "model/error.hpp"
 
 namespace walk::compiler {
@@ -138,9 +139,8 @@ std::string VisibilityResult::summary() const {
   const double avg = walked == 0 ? 0.0 : double(total) / double(walked);
   return fmt::format(
       "{} structure polygons, {} detail polygons in {} clusters; "
-      "{} cells ({} outside; depth {}, {} candidate planes){}, {} portals, {} leaks, PVS avg {:.0f} worst {} "
-      "of {} "
-      "items; "
+      "{} cells ({} outside; depth {}, {} candidate planes){}, {} portals, {} leaks{}, PVS avg {:.0f} "
+      "worst {} of {} items; "
       "flow {} steps, {} portals past budget ({} to might-see), {} occluded; {} sample rays; {} back faces "
       "dropped; "
       "proofs {} tried, {} hidden, {} seen, {} undecided in {} pairs{}; "
@@ -155,9 +155,14 @@ std::string VisibilityResult::summary() const {
                 regions, double(region_voxels) * 1e-6,
                 100.0 * double(region_solid_voxels) / double(std::max<std::uint64_t>(1, region_voxels)),
                 region_portals_dropped, void_facing.size()),
-      graph.portals.size(), leaks.size(), avg, worst, polygons.size(), flow_steps, flow_fallbacks,
-      flow_cell_fallbacks, flow_occluded, sample_rays, back_faces_dropped, proofs.tried, proofs.hidden,
-      proofs.visible, proofs.undecided, proofs.pairs,
+      graph.portals.size(), leaks.size(),
+      leaks_unconfirmed == 0
+          ? std::string()
+          : fmt::format(" ({} more openings the cell flood reached that the voxel flood did not)",
+                        leaks_unconfirmed),
+      avg, worst, polygons.size(), flow_steps, flow_fallbacks, flow_cell_fallbacks, flow_occluded,
+      sample_rays, back_faces_dropped, proofs.tried, proofs.hidden, proofs.visible, proofs.undecided,
+      proofs.pairs,
       proof_pairs_capped > 0 ? fmt::format(" (capped at {} an item)", proof_pairs_capped) : std::string(),
       seconds_partition, seconds_portals, seconds_pvs, seconds_proofs);
 }
@@ -207,7 +212,28 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     std::function<std::uint32_t(const model::Vec3&)> locate_seed;
     if (regions)
       locate_seed = [&](const model::Vec3& p) { return regions->locate(locate(r.partition.nodes, p), p); };
-    InsideFlood flood = flood_inside(view, view_graph, config.seeds, locate_seed, regions.has_value());
+    // Cells are boxes: past a slanted roof or wall they reach the boundary, so an opening the flood reaches
+    // is a leak only where a voxel flood from the same seeds, stopped by the surfaces themselves, reaches
+    // the outside beyond it too (made on the first such opening). Solids have their own open regions.
+    std::optional<VoxelFlood> voxels;
+    std::function<bool(const Leak&)> confirm;
+    if (!regions)
+      confirm = [&](const Leak& leak) {
+        if (!voxels) voxels = flood_voxels(r.polygons, r.structure_items, view.bounds, config.seeds);
+        Box face = view.cells[leak.cell];
+        face.min[leak.axis] = face.max[leak.axis] =
+            leak.max_side ? view.bounds.max[leak.axis] : view.bounds.min[leak.axis];
+        const bool reached = voxels->reaches_beyond(face, leak.axis, leak.max_side);
+        if (!reached)
+          spdlog::debug(
+              "visibility: opening of {:.4f} m2 at local ({:.3f}, {:.3f}, {:.3f}) not a leak: the voxel "
+              "flood does not reach past it",
+              leak.area, leak.where.x, leak.where.y, leak.where.z);
+        return reached;
+      };
+    InsideFlood flood =
+        flood_inside(view, view_graph, config.seeds, locate_seed, regions.has_value(), confirm);
+    r.leaks_unconfirmed = flood.unconfirmed;
     view_inside = std::move(flood.inside);
     r.seeded = flood.seeds > 0;
     if (regions && r.seeded)

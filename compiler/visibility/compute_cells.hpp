@@ -29,8 +29,9 @@ struct VisibilityResult {
   std::size_t regions = 0;
   std::uint64_t region_voxels = 0, region_solid_voxels = 0;
   std::size_t region_portals_dropped = 0;
-  bool seeded = false;          // the flood had seeds
-  std::vector<LeakPath> leaks;  // largest first; without seeds, every open part of the outer boundary
+  bool seeded = false;                // the flood had seeds
+  std::vector<LeakPath> leaks;        // largest first; without seeds, every open part of the outer boundary
+  std::size_t leaks_unconfirmed = 0;  // openings the cell flood reached and the voxel flood did not
   // With solids and seeds: opaque structure items whose front only the void sees (void_facing_items()).
   std::vector<std::uint32_t> void_facing;
   std::vector<std::vector<std::uint32_t>> pvs;  // per cell, sorted item ids, by config.method (empty outside)

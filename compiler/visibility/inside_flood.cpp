@@ -46,7 +46,7 @@ void flood_portals(const PortalGraph& g, std::vector<char>& reached, std::vector
 
 InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<const model::Vec3> seeds,
                          const std::function<std::uint32_t(const model::Vec3&)>& locate_seed,
-                         bool over_regions) {
+                         bool over_regions, const std::function<bool(const Leak&)>& confirm) {
   InsideFlood f;
   const std::size_t n = part.cells.size();
   f.seeds = seeds.size();
@@ -77,6 +77,10 @@ InsideFlood flood_inside(const Partition& part, const PortalGraph& g, std::span<
       });
   for (const Leak& leak : g.leaks) {
     if (!f.inside[leak.cell]) continue;
+    if (confirm && !confirm(leak)) {
+      ++f.unconfirmed;
+      continue;
+    }
     LeakPath path;
     path.area = leak.area;
     path.points.push_back(leak.where);

@@ -27,6 +27,7 @@ struct InsideFlood {
   std::vector<char> inside;  // per cell; all inside when there are no seeds
   std::vector<LeakPath> leaks;
   std::size_t seeds = 0;
+  std::size_t unconfirmed = 0;  // openings the flood reached that `confirm` turned down
 };
 
 // Breadth first from the cells in `queue` (already marked in `reached`, per cell) through the portals
@@ -42,9 +43,11 @@ void flood_portals(
 // node tree. `over_regions` (cells are open regions, open_regions.hpp, where no cell holds a wall's core):
 // the flood passes no one-way portal (a face a wall covers on one side), and afterwards the regions sight
 // passes into from the walk through any portal (a niche too narrow to walk into) are inside too; leak
-// paths are those of the flood itself.
+// paths are those of the flood itself. `confirm` (when set) has the last word on each opening the flood
+// reaches: the voxel flood (voxel_flood.hpp) where cells cannot follow slanted walls.
 [[nodiscard]] InsideFlood flood_inside(
     const Partition& partition, const PortalGraph& graph, std::span<const model::Vec3> seeds,
-    const std::function<std::uint32_t(const model::Vec3&)>& locate_seed = {}, bool over_regions = false);
+    const std::function<std::uint32_t(const model::Vec3&)>& locate_seed = {}, bool over_regions = false,
+    const std::function<bool(const Leak&)>& confirm = {});
 
 }  // namespace walk::compiler
