@@ -143,6 +143,30 @@ std::vector<Winding> box_faces(const Box& box) {
   return faces;
 }
 
+std::vector<std::array<model::Vec3, 3>> box_shell(const Box& box) {
+  std::vector<std::array<model::Vec3, 3>> out;
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;  // e_u x e_v = e_a: (u, v) counter-clockwise seen from +a
+    const bool flat = box.max[a] == box.min[a];
+    for (const bool max_side : {true, false}) {
+      auto corner = [&](bool hi_u, bool hi_v) {
+        model::Vec3 p;
+        p[a] = max_side ? box.max[a] : box.min[a];
+        p[u] = hi_u ? box.max[u] : box.min[u];
+        p[v] = hi_v ? box.max[v] : box.min[v];
+        return p;
+      };
+      std::array<model::Vec3, 4> q{corner(false, false), corner(true, false), corner(true, true),
+                                   corner(false, true)};
+      if (!max_side) std::swap(q[1], q[3]);  // facing -a
+      out.push_back({q[0], q[1], q[2]});
+      out.push_back({q[0], q[2], q[3]});
+      if (flat) break;
+    }
+  }
+  return out;
+}
+
 bool box_meets_region(const Box& box, const std::vector<Plane>& planes) {
   // Whole box behind one plane: the common case, without building faces.
   for (const auto& p : planes) {

@@ -56,6 +56,10 @@ struct VisItems {
 // The faces of `box` (x min, x max, y, z), each a winding; a flat box has one face in its flat plane.
 [[nodiscard]] std::vector<Winding> box_faces(const Box& box);
 
+// The triangles of `box`'s surface, each facing out of it (counter-clockwise seen from outside); a flat box
+// is its one face, facing +axis.
+[[nodiscard]] std::vector<std::array<model::Vec3, 3>> box_shell(const Box& box);
+
 // Does any part of `box` lie on the front side of every plane (the sight lines they bound)? Tested face by
 // face: a convex region that meets a bounded box and is not inside it crosses one of its faces.
 [[nodiscard]] bool box_meets_region(const Box& box, const std::vector<Plane>& planes);

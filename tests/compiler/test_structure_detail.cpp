@@ -204,6 +204,37 @@ TEST(StructureDetail, BoxMeetsRegionDegenerateCases) {
   EXPECT_FALSE(box_meets_region(Box{{0.2, 0.2, 0.2}, {0.2, 0.2, 0.2}}, {axial_plane(1, 0.5, 1.0)}));
 }
 
+// The box a detail cluster stands as in the cells stage's ray caster: twelve triangles facing out, covering
+// the surface once; a flat box is one face (two triangles) facing +axis; a point box has no area.
+TEST(StructureDetail, BoxShellFacesOutAndCoversTheSurfaceOnce) {
+  auto area = [](const std::array<model::Vec3, 3>& t) {
+    return 0.5 * glm::length(glm::cross(t[1] - t[0], t[2] - t[0]));
+  };
+  const Box box{{1, 2, 3}, {2, 4, 6}};
+  const auto shell = box_shell(box);
+  ASSERT_EQ(shell.size(), 12u);
+  const model::Vec3 centre = 0.5 * (box.min + box.max);
+  double total = 0.0;
+  for (const auto& t : shell) {
+    const model::Vec3 normal = glm::cross(t[1] - t[0], t[2] - t[0]);
+    EXPECT_GT(glm::dot(normal, (t[0] + t[1] + t[2]) / 3.0 - centre), 0.0) << "faces out";
+    for (const auto& p : t) EXPECT_TRUE(box.contains(p));
+    total += area(t);
+  }
+  EXPECT_NEAR(total, 2.0 * (1 * 2 + 2 * 3 + 1 * 3), 1e-12);
+  const auto flat = box_shell(Box{{0, 0, 1}, {2, 3, 1}});
+  ASSERT_EQ(flat.size(), 10u) << "its one face, and the sides along x and y, which have no area";
+  double flat_area = 0.0;
+  for (const auto& t : flat) {
+    flat_area += area(t);
+    if (area(t) > 0.0) EXPECT_GT(glm::cross(t[1] - t[0], t[2] - t[0]).z, 0.0) << "faces +z";
+  }
+  EXPECT_NEAR(flat_area, 6.0, 1e-12);
+  double point_area = 0.0;
+  for (const auto& t : box_shell(Box{{1, 1, 1}, {1, 1, 1}})) point_area += area(t);
+  EXPECT_EQ(point_area, 0.0);
+}
+
 // A closed box building of two rooms (door between), walls facing in; `hole` opens 1x1 m in the x = 8 wall.
 MiniBuilding closed_house(bool hole, bool glazed) {
   MiniBuilding m = two_rooms_with_a_door();
