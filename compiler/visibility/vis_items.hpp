@@ -56,8 +56,8 @@ struct VisItems {
 // The faces of `box` (x min, x max, y, z), each a winding; a flat box has one face in its flat plane.
 [[nodiscard]] std::vector<Winding> box_faces(const Box& box);
 
-// The triangles of `box`'s surface, each facing out of it (counter-clockwise seen from outside); a flat box
-// is its one face, facing +axis.
+// The triangles of `box`'s surface, each facing out of it (counter-clockwise seen from outside); of a flat
+// box's two faces in its flat plane only the one facing +axis (its sides have no area).
 [[nodiscard]] std::vector<std::array<model::Vec3, 3>> box_shell(const Box& box);
 
 // Does any part of `box` lie on the front side of every plane (the sight lines they bound)? Tested face by
