@@ -227,7 +227,9 @@ TEST(StructureDetail, BoxShellFacesOutAndCoversTheSurfaceOnce) {
   double flat_area = 0.0;
   for (const auto& t : flat) {
     flat_area += area(t);
-    if (area(t) > 0.0) EXPECT_GT(glm::cross(t[1] - t[0], t[2] - t[0]).z, 0.0) << "faces +z";
+    if (area(t) > 0.0) {
+      EXPECT_GT(glm::cross(t[1] - t[0], t[2] - t[0]).z, 0.0) << "faces +z";
+    }
   }
   EXPECT_NEAR(flat_area, 6.0, 1e-12);
   double point_area = 0.0;
