@@ -183,7 +183,7 @@ void print(const std::string& scene, const Row& r) {
 struct Summary {
   std::string scene;
   std::size_t triangles = 0;
-  double walk_p50 = 0.0, walk_p99 = 0.0;  // culled + frustum + portals, patches
+  double walk_p50 = 0.0, walk_p99 = 0.0;  // culled + frustum + portals + occlusion, patches
   double governed_p50 = 0.0, governed_p99 = 0.0;
 };
 
@@ -664,8 +664,10 @@ int run(const Options& o) {
              << "plot '" << plot_data_path(o.plot)
              << "' every ::1 using 2:5 with linespoints title 'governed p50', "
              << "'' every ::1 using 2:6 with linespoints title 'governed p99', "
-             << "'' every ::1 using 2:3 with linespoints title 'patches, PVS + frustum p50', "
-             << "'' every ::1 using 2:4 with linespoints title 'patches, PVS + frustum p99', "
+             << "'' every ::1 using 2:3 with linespoints title 'patches, PVS + frustum + portals + occlusion "
+                "p50', "
+             << "'' every ::1 using 2:4 with linespoints title 'patches, PVS + frustum + portals + occlusion "
+                "p99', "
              << "'' every ::1 using 2:6:1 with labels offset 1,1 notitle, " << 1000.0 / o.target_hz
              << " title 'frame budget' dashtype 2\n";
     plot_with_gnuplot(o.plot, csv.str(), commands.str());

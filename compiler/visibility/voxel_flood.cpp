@@ -117,14 +117,9 @@ VoxelFlood flood_voxels(std::span<const VisPolygon> polygons, std::size_t struct
     const int x = int(at % row), y = int(at / row % std::size_t(f.dims[1])), z = int(at / slab);
     if (x == 0 || y == 0 || z == 0 || x + 1 == f.dims[0] || y + 1 == f.dims[1] || z + 1 == f.dims[2])
       continue;
-    const std::array<std::pair<bool, std::size_t>, 6> next{{{x > 0, at - 1},
-                                                            {x + 1 < f.dims[0], at + 1},
-                                                            {y > 0, at - row},
-                                                            {y + 1 < f.dims[1], at + row},
-                                                            {z > 0, at - slab},
-                                                            {z + 1 < f.dims[2], at + slab}}};
-    for (const auto& [inside, n] : next) {
-      if (!inside || f.closed[n] || f.reached[n]) continue;
+    // Not on the outside layer: all six neighbours are in the grid.
+    for (const std::size_t n : {at - 1, at + 1, at - row, at + row, at - slab, at + slab}) {
+      if (f.closed[n] || f.reached[n]) continue;
       f.reached[n] = 1;
       queue.push_back(n);
     }
