@@ -4,6 +4,8 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
+#include "compiler/partition/axial_cover.hpp"
+
 namespace walk::compiler {
 namespace {
 
@@ -41,15 +43,16 @@ bool triangle_meets_box(const std::array<model::Vec3, 3>& triangle, const model:
   return std::abs(glm::dot(normal, v0)) <= r;
 }
 
+int VoxelFlood::voxel_of(double x, int axis) const {
+  return std::clamp(int(std::floor((x - bounds.min[axis]) / voxel)), 0, dims[axis] - 1);
+}
+
 bool VoxelFlood::reaches_beyond(const Box& face, int axis, bool max_side) const {
   if (reached.empty()) return false;
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  auto cell = [&](double x, int a) {
-    return std::clamp(int(std::floor((x - bounds.min[a]) / voxel)), 0, dims[a] - 1);
-  };
+  const int u = u_axis(axis), v = v_axis(axis);
   const int layer = max_side ? dims[axis] - 1 : 0;
-  for (int i = cell(face.min[u], u); i <= cell(face.max[u], u); ++i)
-    for (int k = cell(face.min[v], v); k <= cell(face.max[v], v); ++k) {
+  for (int i = voxel_of(face.min[u], u); i <= voxel_of(face.max[u], u); ++i)
+    for (int k = voxel_of(face.min[v], v); k <= voxel_of(face.max[v], v); ++k) {
       std::array<int, 3> at{};
       at[axis] = layer;
       at[u] = i;
@@ -78,9 +81,6 @@ VoxelFlood flood_voxels(std::span<const VisPolygon> polygons, std::size_t struct
   f.reached.assign(total, 0);
 
   const model::Vec3 half(0.5 * f.voxel + kTouchSlack);
-  auto voxel_of = [&](double x, int a) {
-    return std::clamp(int(std::floor((x - f.bounds.min[a]) / f.voxel)), 0, f.dims[a] - 1);
-  };
   for (std::size_t i = 0; i < std::min(structure, polygons.size()); ++i) {
     const VisPolygon& p = polygons[i];
     if (!p.opaque && !p.glass) continue;
@@ -88,8 +88,8 @@ VoxelFlood flood_voxels(std::span<const VisPolygon> polygons, std::size_t struct
       const model::Vec3 lo = glm::min(t[0], glm::min(t[1], t[2])), hi = glm::max(t[0], glm::max(t[1], t[2]));
       std::array<int, 3> from{}, to{};
       for (int a = 0; a < 3; ++a) {
-        from[a] = voxel_of(lo[a] - kTouchSlack, a);
-        to[a] = voxel_of(hi[a] + kTouchSlack, a);
+        from[a] = f.voxel_of(lo[a] - kTouchSlack, a);
+        to[a] = f.voxel_of(hi[a] + kTouchSlack, a);
       }
       for (int z = from[2]; z <= to[2]; ++z)
         for (int y = from[1]; y <= to[1]; ++y)
@@ -106,7 +106,7 @@ VoxelFlood flood_voxels(std::span<const VisPolygon> polygons, std::size_t struct
   // reaches only the outside beyond itself.
   std::vector<std::size_t> queue;
   for (const auto& s : seeds) {
-    const std::size_t at = f.index(voxel_of(s.x, 0), voxel_of(s.y, 1), voxel_of(s.z, 2));
+    const std::size_t at = f.index(f.voxel_of(s.x, 0), f.voxel_of(s.y, 1), f.voxel_of(s.z, 2));
     if (f.closed[at] || f.reached[at]) continue;
     f.reached[at] = 1;
     queue.push_back(at);

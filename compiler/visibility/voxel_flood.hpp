@@ -1,8 +1,9 @@
 #pragma once
 // A second opinion on leaks where cells cannot follow the walls. The inside flood (inside_flood.hpp) passes
 // from cell to cell through the open parts of the cells' axial faces; a slanted roof covers no such face,
-// so a cell under it reaches past the roof to the model's boundary and the flood seems to leak (the
-// house's attic, lit like every zone: 13 openings). Here the same seeds flood a voxel grid in which every
+// so a cell under it reaches past the roof to the model's boundary and the flood seems to leak; so does a
+// cell joining the walk to a wall's hollow core (the apartment plan: 13 of its 22 openings). Here the same
+// seeds flood a voxel grid in which every
 // voxel a structure polygon or pane touches is closed (a conservative voxelization: a surface at any slant
 // closes every voxel it crosses, so no 6-connected path passes it), and an opening of the boundary is a
 // leak only where this flood reaches the outside beyond it too.
@@ -30,6 +31,8 @@ struct VoxelFlood {
   [[nodiscard]] std::size_t index(int x, int y, int z) const {
     return (std::size_t(z) * std::size_t(dims[1]) + std::size_t(y)) * std::size_t(dims[0]) + std::size_t(x);
   }
+  // The voxel holding coordinate `x` on `axis`, clamped into the grid.
+  [[nodiscard]] int voxel_of(double x, int axis) const;
   // Did the flood reach the outside layer of voxels beyond `face`, a rectangle flat on `axis` in the
   // plane of the model's bounds (their max side or min side)? The flood stops at that layer, so an
   // opening elsewhere does not reach round to this one.
