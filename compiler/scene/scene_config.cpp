@@ -359,7 +359,7 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
   const auto t = root.table("lighting");
   if (!t) return;
   t->only({"method", "grid", "samples_per_luminaire", "rays_per_watt", "residual", "ambient", "exposure",
-           "white_luminance", "ray_caster", "target_error", "direct", "refine"});
+           "white_luminance", "ray_caster", "target_error", "direct", "refine", "indirect"});
   auto& l = cfg.lighting;
   if (const auto m = t->string("method")) {
     if (*m == "radiosity")
@@ -374,6 +374,13 @@ void read_lighting(const TomlTable& root, SceneConfig& cfg) {
     l.gather_direct = *d == "gather";
   }
   l.refine = t->boolean("refine").value_or(l.refine);
+  if (const auto d = t->string("indirect")) {
+    if (*d != "gather" && *d != "patches")
+      t->fail("indirect", "unknown way '" + *d + "' (known: gather, patches)");
+    l.gather_indirect = *d == "gather";
+    if (l.gather_indirect && !l.gather_direct)
+      t->fail("indirect", "'gather' needs direct light gathered too: add direct = \"gather\"");
+  }
   l.grid = positive(*t, "grid", l.grid);
   if (l.grid < kMinGrid) t->fail("grid", "must be at least " + std::to_string(kMinGrid) + " m");
   if (const auto s = t->integer("samples_per_luminaire")) {

@@ -55,6 +55,10 @@ struct LightingConfig {
   // target allows (compiler/lighting/light_refinement.hpp). Off unless asked: it multiplies the triangles
   // the kiosk draws (the house: 6x) for still-image accuracy
   bool refine = false;
+  // with gathered direct light: indirect light gathered at each display vertex from the solved patches
+  // (compiler/lighting/final_gather.hpp) instead of interpolated from the patches around it, so it does
+  // not follow the grid. Off unless asked: rays per vertex
+  bool gather_indirect = false;
   double rays_per_watt = 1000.0;       // radiosity: rays shot per watt of unshot power (expert override)
   std::optional<double> target_error;  // radiosity: the solver's estimated error to reach; sets the rays
   double residual = 0.01;              // radiosity: stop when unshot power < residual * emitted

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <glm/geometric.hpp>
 #include <limits>
@@ -18,6 +19,7 @@
 #include "common/parallel_for.hpp"
 #include "compiler/geometry/triangle_weights.hpp"
 #include "compiler/lighting/direct_light.hpp"
+#include "compiler/lighting/final_gather.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/work_budget.hpp"
@@ -37,6 +39,8 @@ constexpr double kTargetSlack = 1.15;
 // A refined vertex finds its patch by a ray from this far in front of it (metres): above the float
 // rounding of bundle vertices, below any gap between surfaces.
 constexpr double kLocateOffset = 1e-3;
+// The final gather's relative error where the scene gives no target: the shipped scenes' usual target.
+constexpr double kDefaultGatherError = 0.05;
 
 template <typename T>
 std::uint64_t hash_vector(std::uint64_t h, const std::vector<T>& v) {
@@ -65,7 +69,8 @@ class LightStage final : public Stage {
                             l.residual,
                             double(s.model.circuits.size()),
                             l.target_error.value_or(0.0),
-                            double(l.gather_direct)};
+                            double(l.gather_direct),
+                            double(l.gather_indirect)};
     h = hash_bytes(h, knobs, sizeof knobs);
     for (const auto& lum : s.model.luminaires) {  // what the bundle's records leave out
       const double shape[] = {double(lum.kind), lum.cone,       lum.exponent,
@@ -131,7 +136,8 @@ class LightStage final : public Stage {
     SparseLight vertex_direct, patch_direct;
     DirectLightStats direct_stats;
     std::string direct_note;
-    if (s.config.lighting.gather_direct && s.patches_coarser_than_display) {
+    const bool final_gather = s.config.lighting.gather_direct && s.config.lighting.gather_indirect;
+    if (s.config.lighting.gather_direct && (s.patches_coarser_than_display || final_gather)) {
       std::size_t from_refinement = 0;
       vertex_direct = gather_vertex_direct(s, &direct_stats, from_refinement);
       patch_direct = patch_means(s.patches, vertex_direct);
@@ -149,6 +155,14 @@ class LightStage final : public Stage {
             ? solve_to_target(s, emitters, points, circuits, ro, *s.config.lighting.target_error, how)
             : solve_radiosity(s.patches, emitters, points, circuits, ro);
     out.polygon_light = polygon_radiosity(s.patches, r, out.polygons.size());
+    FinalGatherStats gathered;
+    SparseLight indirect;
+    if (final_gather) {
+      indirect = gather_indirect_at_vertices(s, emitters, r, vertex_direct, &gathered);
+      direct_note += fmt::format(
+          "indirect gathered at vertices ({} rays, estimated {:.2f}%, {} at the cap, {:.0f}% of the light), ",
+          gathered.rays, 100.0 * gathered.estimated_error, gathered.capped, 100.0 * gathered.gathered_share);
+    }
     if (!vertex_direct.empty()) {
       // The display: the direct light as gathered at its vertex plus the patches' shot light around it.
       for (std::size_t i = 0; i < patch_direct.rows(); ++i) r.radiosity.add(i, patch_direct.row(i), -1.0);
@@ -159,21 +173,54 @@ class LightStage final : public Stage {
             fmt::format("shot light spread to refined vertices ({} off patches: nearest corner), ", lost);
       }
       for (std::size_t i = 0; i < vertex_direct.rows(); ++i) light.add(i, vertex_direct.row(i));
+      if (final_gather) {  // lit vertices show what they gathered; panels keep their patches' glow
+        for (std::size_t i = 0; i < s.samples.size(); ++i) {
+          const std::uint32_t v = s.sample_vertex[i];
+          light.set_row(v, vertex_direct.row(v));
+          light.add(v, indirect.row(i));
+        }
+      }
       out.light = light.to_rows();
     } else {
       out.light = vertex_radiosity(s.patches, r).to_rows();
     }
     const auto& st = r.stats;
     auto outcome = StageOutcome::ran(
-        s.patches.patches.size(), st.rays,
+        s.patches.patches.size(), st.rays + gathered.rays,
         fmt::format(
             "radiosity: {}, estimated error {:.2f}%; {} patches, {} circuits, {} rays in {} shots / {} "
             "rounds, {:.2f} Mrays/s, residual {:.2f}%, absorbed {:.1f} W escaped {:.1f} W of {:.1f} W shot",
             direct_note + how, 100.0 * st.estimated_error, s.patches.patches.size(), circuits, st.rays,
             st.shots, st.rounds, st.rays / st.seconds * 1e-6, 100.0 * st.unshot / st.emitted, st.absorbed,
             st.escaped, st.emitted));
-    outcome.estimated_error = st.estimated_error;
+    // With a final gather the shown light's noise is the gather's and the patches' shooting noise in the
+    // share of it that was gathered (an upper bound: a vertex averages it over every patch it sees).
+    outcome.estimated_error =
+        final_gather ? std::hypot(gathered.estimated_error, gathered.gathered_share * st.estimated_error)
+                     : st.estimated_error;
     return outcome;
+  }
+
+  // Indirect light at every lit vertex, gathered from the solved patches (each patch's radiosity less its
+  // own emission: panels' glow reaches the vertices as their gathered direct light).
+  static SparseLight gather_indirect_at_vertices(const CompileState& s, std::span<const AreaEmitter> emitters,
+                                                 const RadiosityResult& r, const SparseLight& vertex_direct,
+                                                 FinalGatherStats* stats) {
+    SparseLight outgoing = r.radiosity;
+    for (const AreaEmitter& e : emitters) {
+      double* b = outgoing.at(e.patch, e.circuit);
+      for (int c = 0; c < 3; ++c) b[c] = std::max(0.0, b[c] - e.exitance[c]);
+    }
+    std::vector<double> shown_direct;
+    shown_direct.reserve(s.samples.size());
+    for (const std::uint32_t v : s.sample_vertex) shown_direct.push_back(vertex_direct.scalar(v));
+    std::vector<SurfaceSample> receivers = s.samples;
+    inset_from_edges(receivers, s.sample_vertex, s.patches.vertices, s.out.indices);
+    FinalGatherOptions o;
+    o.target_error = s.config.lighting.target_error.value_or(kDefaultGatherError);
+    o.threads = s.options.threads;
+    o.caster = s.config.lighting.ray_caster;
+    return gather_indirect(s.patches, outgoing, receivers, shown_direct, o, stats);
   }
 
   // Direct light gathered at `samples` against the scene's shadow occluders (consumed: a compile gathers

@@ -159,6 +159,30 @@ TEST_F(ProbeTest, GatheredDirectLightGivesTheSameCube) {
   EXPECT_NEAR(shown, expected, 0.03 * expected);
 }
 
+TEST_F(ProbeTest, IndirectLightGatheredAtTheVerticesGivesTheSameCube) {
+  // The same cube with direct light gathered and indirect light gathered at each vertex from the solved
+  // patches (the final gather): the light shown is again the closed form.
+  std::ifstream in(dir_ / "cube.toml");
+  const std::string scene((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(dir_ / "cube-final.toml") << scene << "direct = \"gather\"\nindirect = \"gather\"\n";
+  std::vector<StageReport> stages;
+  ASSERT_TRUE(compile_to_file((dir_ / "cube-final.toml").string(), (dir_ / "cube-final.walk").string(), true,
+                              &stages));
+  const auto bundle = model::Bundle::open((dir_ / "cube-final.walk").string());
+  const auto light =
+      std::find_if(stages.begin(), stages.end(), [](const auto& s) { return s.name == "light"; });
+  ASSERT_NE(light, stages.end());
+  EXPECT_NE(light->detail.find("indirect gathered at vertices ("), std::string::npos) << light->detail;
+  const StoredLight stored(*bundle);
+  const auto points = surface_points(*bundle, 300);
+  double shown = 0.0;
+  for (const auto& p : points) shown += stored.on_surface(p.position, p.normal).g / points.size();
+  const double expected = kRho * kFlux / 179.0 / (6.0 * kSide * kSide * (1.0 - kRho));
+  std::printf("CIE cube, indirect light gathered at vertices: shown %.4f, closed form %.4f W/m2\n", shown,
+              expected);
+  EXPECT_NEAR(shown, expected, 0.03 * expected);
+}
+
 TEST_F(ProbeTest, TheReferenceFindsPointsNoViewSees) {
   // Under the floor facing up, every first bounce meets the floor's back: hidden, left out of comparisons.
   // Inside the cube facing up, and outside beside it facing away, no bounce meets a back face.

@@ -54,6 +54,21 @@ TEST_F(SceneConfigTest, DirectLightIsShotUnlessToldAndRefinedOnlyWhenAsked) {
   EXPECT_NE(error_of(head + "[lighting]\nrefine = \"yes\"\n").find("lighting.refine"), std::string::npos);
 }
 
+TEST_F(SceneConfigTest, IndirectLightIsGatheredOnlyWhenAskedAndOnlyWithGatheredDirectLight) {
+  const std::string head = "[model]\nfile = \"a.obj\"\n";
+  EXPECT_FALSE(load_scene_config(write(head)).lighting.gather_indirect);
+  const auto final_gather =
+      load_scene_config(write(head + "[lighting]\ndirect = \"gather\"\nindirect = \"gather\"\n"));
+  EXPECT_TRUE(final_gather.lighting.gather_indirect);
+  EXPECT_FALSE(load_scene_config(write(head + "[lighting]\ndirect = \"gather\"\nindirect = \"patches\"\n"))
+                   .lighting.gather_indirect);
+  const std::string alone = error_of(head + "[lighting]\nindirect = \"gather\"\n");
+  EXPECT_NE(alone.find("lighting.indirect"), std::string::npos) << alone;
+  EXPECT_NE(alone.find("direct = \"gather\""), std::string::npos) << alone;
+  const std::string way = error_of(head + "[lighting]\ndirect = \"gather\"\nindirect = \"trace\"\n");
+  EXPECT_NE(way.find("known: gather, patches"), std::string::npos) << way;
+}
+
 TEST_F(SceneConfigTest, StartIsInModelUnitsAndOptional) {
   const auto none = load_scene_config(write("[model]\nfile = \"a.dxf\"\nunits = \"m\"\n"));
   EXPECT_FALSE(none.start.has_value());
