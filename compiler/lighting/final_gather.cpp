@@ -16,6 +16,10 @@ namespace {
 // Ray origins stand this far off the receiver (metres): above the float rounding of bundle vertices, so a
 // ray does not meet the receiver's own surface, and far below any room's size.
 constexpr double kGatherOffset = 1e-4;
+// Noise in a dark corner is judged against this fraction of the room's typical (RMS direct) light, not
+// against the corner's own: the eye adapts to the room, and a receiver lit a hundredth as much would
+// otherwise take the most rays.
+constexpr double kDarkFloor = 0.25;
 static_assert(kGatherBatchRays == 16, "a batch is a 4 x 4 grid of strata");
 
 }  // namespace
@@ -59,6 +63,13 @@ SparseLight gather_indirect(const PatchSet& patches, const SparseLight& outgoing
   std::uint32_t circuits = 0;
   for (std::size_t r = 0; r < outgoing.rows(); ++r)
     for (const CircuitLight& e : outgoing.row(r)) circuits = std::max(circuits, e.circuit + 1);
+
+  // The error allowed at a receiver is relative to its light, but never to less than kDarkFloor of the
+  // RMS direct light over all receivers.
+  double direct_square = 0.0;
+  for (const double d : shown_direct) direct_square += d * d;
+  const double floor =
+      shown_direct.empty() ? 0.0 : kDarkFloor * std::sqrt(direct_square / double(shown_direct.size()));
 
   SparseLight out(samples.size());
   std::vector<double> standard_error(samples.size(), 0.0), shown(samples.size(), 0.0),
@@ -109,7 +120,8 @@ SparseLight gather_indirect(const PatchSet& patches, const SparseLight& outgoing
         ++n;
         if (n >= kGatherMinBatches &&
             albedo * standard_error_of_mean() <=
-                options.target_error * (shown_direct[i] + albedo * total / (n * kGatherBatchRays))) {
+                options.target_error *
+                    std::max(floor, shown_direct[i] + albedo * total / (n * kGatherBatchRays))) {
           met = true;
           break;
         }

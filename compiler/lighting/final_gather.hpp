@@ -18,7 +18,8 @@
 namespace walk::compiler {
 
 struct FinalGatherOptions {
-  // Relative standard error each receiver's shown light (direct + gathered) is gathered to.
+  // Relative standard error each receiver's shown light (direct + gathered) is gathered to; a receiver
+  // darker than a quarter of the RMS direct light is held to that quarter (final_gather.cpp).
   double target_error = 0.05;
   unsigned threads = 2;
   std::uint64_t seed = 1;

@@ -1,6 +1,7 @@
 // The final gather (compiler/lighting/final_gather.hpp): a receiver inside a box of uniform radiosity
-// reflects exactly albedo x radiosity; one lit face gives the closed-form form factor; rays that leave the
-// model or meet a surface's back bring nothing; receivers on a polygon's edge move into it, others stay.
+// reflects exactly albedo x radiosity; one lit face gives the closed-form form factor; a dark receiver's
+// noise is judged against the room's light; rays that leave the model or meet a surface's back bring
+// nothing; receivers on a polygon's edge move into it, others stay.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -85,6 +86,22 @@ TEST(FinalGather, OneLitFaceGivesTheFormFactor) {
     EXPECT_LE(stats.estimated_error, 0.01);
   else
     EXPECT_EQ(stats.rays, std::uint64_t(kGatherMaxBatches * kGatherBatchRays));
+}
+
+TEST(FinalGather, ADarkReceiverIsJudgedAgainstTheRoomsLight) {
+  // The same receiver beside a brightly lit one: its light (0.12) is far below a quarter of the RMS direct
+  // light (0.25 x 100 / sqrt 2), so its noise is judged against that and it stops at the fewest rays.
+  const PatchSet set = box();
+  FinalGatherOptions o;
+  o.target_error = 0.01;
+  FinalGatherStats stats;
+  const std::vector<SurfaceSample> samples{kFloorCentre, kFloorCentre};
+  const SparseLight light =
+      gather_indirect(set, outgoing(set, 1.0, 1), samples, std::vector{0.0, 100.0}, o, &stats);
+  EXPECT_EQ(stats.rays, std::uint64_t(2 * kGatherMinBatches * kGatherBatchRays));
+  EXPECT_EQ(stats.capped, 0u);
+  ASSERT_EQ(light.row(0).size(), 1u);
+  EXPECT_GT(light.row(0)[0].rgb[0], 0.0);
 }
 
 TEST(FinalGather, RaysOutOfTheModelOrOntoABackBringNothing) {
