@@ -159,8 +159,10 @@ int verify(const VerifyArgs& args) {
       cfg.threshold = args.threshold;
       cfg.cull_back_faces = args.options.cull_back_faces;
       const auto t = std::chrono::steady_clock::now();
-      const VisibilityResult vr =
-          compute_visibility(b->vertices(), b->indices(), b->polygons(), cfg, group_names);
+      const bool has_coarse = b->coarse_ranges().size() == b->polygons().size();
+      const VisibilityResult vr = compute_visibility(
+          b->vertices(), has_coarse ? b->coarse_indices() : b->indices(),
+          coarse_forms(b->polygons(), b->coarse_ranges()), cfg, group_names, b->polygons());
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
       if (vr.partition.cells.size() != views.size()) {
         std::fprintf(stderr,

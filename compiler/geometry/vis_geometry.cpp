@@ -188,6 +188,7 @@ std::vector<VisPolygon> vis_polygons(std::span<const model::VertexRecord> vertic
       area_normal += glm::cross(t[1] - t[0], t[2] - t[0]);
       vp.triangles.push_back(t);
     }
+    vp.drawn_triangles = vp.triangles.size();
     if (b.empty()) continue;
     vp.box = {b.min, b.max};
     const double len = glm::length(area_normal);

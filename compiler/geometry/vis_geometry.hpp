@@ -59,6 +59,9 @@ void separating_planes(const Winding& source, const Winding& pass, bool flip, st
 // A drawn polygon of the bundle (opaque, glass, luminaire panel) in double precision.
 struct VisPolygon {
   std::vector<std::array<model::Vec3, 3>> triangles;
+  // Triangles the display draws for it: what leaving it out of a view saves. `triangles` may be fewer
+  // over the same surface (the coarse form, which the cells stage works on).
+  std::size_t drawn_triangles = 0;
   Winding hull;  // convex hull of its vertices in its plane: conservative stand-in for visibility tests
   model::Vec3 normal{0.0};
   Box box;

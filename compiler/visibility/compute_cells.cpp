@@ -68,7 +68,7 @@ void prove_hidden(VisibilityResult& r, std::vector<std::vector<std::uint32_t>>& 
     double triangles = 0.0, items = 0.0;
     for (const auto p : pvs[c])
       if (to_try(c, p)) {
-        triangles += double(r.polygons[p].triangles.size());
+        triangles += double(r.polygons[p].drawn_triangles);
         items += 1.0;
       }
     if (items > 0.0) mean_triangles[c] = triangles / items;
@@ -77,7 +77,7 @@ void prove_hidden(VisibilityResult& r, std::vector<std::vector<std::uint32_t>>& 
   // 88 % of the walls proven hidden took 32 pairs or fewer, while 128 k walls of 72 triangles each spent
   // 244 pairs each on average to stay undecided, 68 % of all the pairs.
   auto allowance = [&](std::size_t c, std::uint32_t p) {
-    return proof_allowance(r.polygons[p].triangles.size(), mean_triangles[c], r.polygons[p].detail,
+    return proof_allowance(r.polygons[p].drawn_triangles, mean_triangles[c], r.polygons[p].detail,
                            config.proof_pairs, least_pairs);
   };
   // The whole proof's work before any of it: each item to try (in the PVS, seen by no sample) may take its
@@ -177,12 +177,15 @@ std::vector<std::uint32_t> VisibilityResult::polygons_of(std::span<const std::ui
 VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertices,
                                     std::span<const std::uint32_t> indices,
                                     std::span<const model::PolygonRecord> polygons,
-                                    const VisibilityConfig& config,
-                                    std::span<const std::string> group_names) {
+                                    const VisibilityConfig& config, std::span<const std::string> group_names,
+                                    std::span<const model::PolygonRecord> drawn_records) {
   VisibilityResult r;
   auto t = std::chrono::steady_clock::now();
   {
     std::vector<VisPolygon> drawn = vis_polygons(vertices, indices, polygons);
+    if (drawn_records.size() == drawn.size())
+      for (std::size_t p = 0; p < drawn.size(); ++p)
+        drawn[p].drawn_triangles = drawn_records[p].index_count / 3;
     const std::vector<char> structure = structure_polygons(drawn, polygons, group_names, config);
     VisItems items = make_vis_items(std::move(drawn), polygons, structure);
     r.polygons = std::move(items.items);
@@ -366,10 +369,24 @@ void check_sample_budget(const VisibilityConfig& config, std::size_t cells) {
                   kMaxSampledPvsRays / double(cells))));
 }
 
+std::vector<model::PolygonRecord> coarse_forms(std::span<const model::PolygonRecord> polygons,
+                                               std::span<const model::CoarseRangeRecord> coarse) {
+  std::vector<model::PolygonRecord> out(polygons.begin(), polygons.end());
+  if (coarse.size() != polygons.size()) return out;
+  for (std::size_t p = 0; p < out.size(); ++p) {
+    out[p].first_index = coarse[p].first_index;
+    out[p].index_count = coarse[p].index_count;
+  }
+  return out;
+}
+
 CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfig& config) {
   std::vector<std::string> group_names;
   for (const auto& g : out.groups) group_names.emplace_back(out.strings.c_str() + g.name);
-  const VisibilityResult r = compute_visibility(out.vertices, out.indices, out.polygons, config, group_names);
+  const std::vector<model::PolygonRecord> coarse = coarse_forms(out.polygons, out.coarse_ranges);
+  const bool has_coarse = out.coarse_ranges.size() == out.polygons.size();
+  const VisibilityResult r = compute_visibility(out.vertices, has_coarse ? out.coarse_indices : out.indices,
+                                                coarse, config, group_names, out.polygons);
   out.clusters.clear();
   out.cluster_polygons.clear();
   for (std::size_t i = 0; i < r.polygons.size(); ++i) {

@@ -22,7 +22,7 @@ void split_cluster(std::vector<std::uint32_t> ids, const std::vector<VisPolygon>
   std::size_t triangles = 0;
   for (const auto id : ids) {
     box = united(box, polygons[id].box);
-    triangles += polygons[id].triangles.size();
+    triangles += polygons[id].drawn_triangles;
   }
   const model::Vec3 size = box.size();
   const double longest = std::max({size.x, size.y, size.z});
@@ -41,6 +41,7 @@ void split_cluster(std::vector<std::uint32_t> ids, const std::vector<VisPolygon>
   item.detail = true;
   item.box = box;
   item.glass = polygons[ids.front()].glass;
+  item.drawn_triangles = triangles;
   for (const auto id : ids)
     item.triangles.insert(item.triangles.end(), polygons[id].triangles.begin(), polygons[id].triangles.end());
   std::sort(ids.begin(), ids.end());
