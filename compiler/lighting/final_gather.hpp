@@ -47,7 +47,7 @@ inline constexpr int kGatherMaxBatches = 64;
 // would leave through that wall into the next room: each sample moves up to kGatherInset into its own
 // polygon (along the mean of the directions to its triangles' centroids; `indices`: the display's triangles
 // over `vertices`, sample i at vertex sample_vertex[i]). A sample inside a polygon stays where it is.
-inline constexpr double kGatherInset = 0.01;  // metres: a tenth of the finest grid, where light varies little
+inline constexpr double kGatherInset = 0.01;  // metres: half the finest grid (kMinGrid); light varies little
 void inset_from_edges(std::span<SurfaceSample> samples, std::span<const std::uint32_t> sample_vertex,
                       std::span<const model::Vec3> vertices, std::span<const std::uint32_t> indices);
 
