@@ -178,7 +178,8 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
                                     std::span<const std::uint32_t> indices,
                                     std::span<const model::PolygonRecord> polygons,
                                     const VisibilityConfig& config, std::span<const std::string> group_names,
-                                    std::span<const model::PolygonRecord> drawn_records) {
+                                    std::span<const model::PolygonRecord> drawn_records,
+                                    std::span<const std::uint32_t> drawn_indices) {
   VisibilityResult r;
   auto t = std::chrono::steady_clock::now();
   {
@@ -261,10 +262,25 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     // that meets the box sees the cluster (more than its triangles would: conservative), and the caster is
     // the shell and twelve triangles a cluster (the conference room's 507,475 triangles made its polygon
     // BSP most of the cells stage).
+    // Structure goes in as the display's triangles where they are given: the axial caster's in-plane grids
+    // fit the lighting grid's small triangles better than whole-polygon slivers (proofs on M 58 -> 50 s).
     std::vector<Triangle> triangles;
-    for (std::uint32_t p = 0; p < r.polygons.size(); ++p)
-      for (const auto& tri : r.polygons[p].detail ? box_shell(r.polygons[p].box) : r.polygons[p].triangles)
-        triangles.push_back({tri[0], tri[1], tri[2], p});
+    const bool diced = drawn_records.size() == polygons.size() && !drawn_indices.empty();
+    auto position = [&](std::uint32_t i) {
+      const auto& v = vertices[drawn_indices[i]].position;
+      return model::Vec3(v[0], v[1], v[2]);
+    };
+    for (std::uint32_t p = 0; p < r.polygons.size(); ++p) {
+      if (r.polygons[p].detail) {
+        for (const auto& tri : box_shell(r.polygons[p].box)) triangles.push_back({tri[0], tri[1], tri[2], p});
+      } else if (diced) {
+        const auto& rec = drawn_records[r.item_polygons[p].front()];
+        for (std::uint32_t i = rec.first_index; i + 2 < rec.first_index + rec.index_count; i += 3)
+          triangles.push_back({position(i), position(i + 1), position(i + 2), p});
+      } else {
+        for (const auto& tri : r.polygons[p].triangles) triangles.push_back({tri[0], tri[1], tri[2], p});
+      }
+    }
     caster = make_ray_caster(config.ray_caster, triangles);
     SampledPvsOptions options{config.sample_points,   config.rays_per_point, config.seed, config.threads,
                               config.cull_back_faces, view_inside,           {}};
@@ -386,7 +402,7 @@ CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfi
   const std::vector<model::PolygonRecord> coarse = coarse_forms(out.polygons, out.coarse_ranges);
   const bool has_coarse = out.coarse_ranges.size() == out.polygons.size();
   const VisibilityResult r = compute_visibility(out.vertices, has_coarse ? out.coarse_indices : out.indices,
-                                                coarse, config, group_names, out.polygons);
+                                                coarse, config, group_names, out.polygons, out.indices);
   out.clusters.clear();
   out.cluster_polygons.clear();
   for (std::size_t i = 0; i < r.polygons.size(); ++i) {

@@ -64,7 +64,8 @@ struct VisibilityResult {
                                                   std::span<const model::PolygonRecord> polygons,
                                                   const VisibilityConfig& config,
                                                   std::span<const std::string> group_names = {},
-                                                  std::span<const model::PolygonRecord> drawn = {});
+                                                  std::span<const model::PolygonRecord> drawn = {},
+                                                  std::span<const std::uint32_t> drawn_indices = {});
 
 // The polygons' records over their coarse forms (the fewest triangles over each polygon's outline, CIDX),
 // which the cells stage works on: the same surfaces as the display's diced and light-refined triangles,
