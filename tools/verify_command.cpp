@@ -162,7 +162,7 @@ int verify(const VerifyArgs& args) {
       const bool has_coarse = b->coarse_ranges().size() == b->polygons().size();
       const VisibilityResult vr = compute_visibility(
           b->vertices(), has_coarse ? b->coarse_indices() : b->indices(),
-          coarse_forms(b->polygons(), b->coarse_ranges()), cfg, group_names, b->polygons());
+          coarse_forms(b->polygons(), b->coarse_ranges()), cfg, group_names, b->polygons(), b->indices());
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
       if (vr.partition.cells.size() != views.size()) {
         std::fprintf(stderr,
