@@ -263,7 +263,7 @@ VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertice
     // the shell and twelve triangles a cluster (the conference room's 507,475 triangles made its polygon
     // BSP most of the cells stage).
     // Structure goes in as the display's triangles where they are given: the axial caster's in-plane grids
-    // fit the lighting grid's small triangles better than whole-polygon slivers (proofs on M 58 -> 50 s).
+    // fit the lighting grid's small triangles better than whole-polygon slivers (M's proofs 52.5 -> 45.2 s).
     std::vector<Triangle> triangles;
     const bool diced = drawn_records.size() == polygons.size() && !drawn_indices.empty();
     auto position = [&](std::uint32_t i) {

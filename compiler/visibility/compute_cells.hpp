@@ -58,7 +58,8 @@ struct VisibilityResult {
 // Everything from the drawn polygons (local coordinates, as in the bundle). `group_names` (by group index)
 // feed the scene's structure and detail patterns. `drawn`: when `polygons` index other triangles than the
 // display's (the coarse forms: coarse_forms below), the display's records, whose triangle counts are what
-// leaving a polygon out saves.
+// leaving a polygon out saves; `drawn_indices`, the display's triangles (INDX), which the samples' and
+// proofs' ray caster then takes for the structure.
 [[nodiscard]] VisibilityResult compute_visibility(std::span<const model::VertexRecord> vertices,
                                                   std::span<const std::uint32_t> indices,
                                                   std::span<const model::PolygonRecord> polygons,
