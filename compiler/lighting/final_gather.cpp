@@ -53,13 +53,7 @@ void inset_from_edges(std::span<SurfaceSample> samples, std::span<const std::uin
 SparseLight gather_indirect(const PatchSet& patches, const SparseLight& outgoing,
                             std::span<const SurfaceSample> samples, std::span<const double> shown_direct,
                             const FinalGatherOptions& options, FinalGatherStats* stats) {
-  std::vector<Triangle> triangles;
-  triangles.reserve(patches.patches.size());
-  for (std::uint32_t i = 0; i < patches.patches.size(); ++i) {
-    const Patch& p = patches.patches[i];
-    triangles.push_back({patches.vertices[p.v[0]], patches.vertices[p.v[1]], patches.vertices[p.v[2]], i});
-  }
-  const auto caster = make_ray_caster(options.caster, triangles);
+  const auto caster = make_ray_caster(options.caster, patches.triangles());
   std::uint32_t circuits = 0;
   for (std::size_t r = 0; r < outgoing.rows(); ++r)
     for (const CircuitLight& e : outgoing.row(r)) circuits = std::max(circuits, e.circuit + 1);

@@ -18,4 +18,14 @@ bool PatchSet::add(std::uint32_t a, std::uint32_t b, std::uint32_t c, const mode
   return true;
 }
 
+std::vector<Triangle> PatchSet::triangles() const {
+  std::vector<Triangle> out;
+  out.reserve(patches.size());
+  for (std::uint32_t i = 0; i < patches.size(); ++i) {
+    const Patch& p = patches[i];
+    out.push_back({vertices[p.v[0]], vertices[p.v[1]], vertices[p.v[2]], i});
+  }
+  return out;
+}
+
 }  // namespace walk::compiler

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "compiler/raycast/triangle_bvh.hpp"
 #include "model/model.hpp"
 
 namespace walk::compiler {
@@ -24,6 +25,8 @@ struct PatchSet {
   // Adds one triangle; returns false (and adds nothing) for a degenerate one.
   bool add(std::uint32_t a, std::uint32_t b, std::uint32_t c, const model::Rgb& reflectance,
            std::uint32_t polygon);
+  // The patches as triangles for a ray caster, each carrying its patch's index (as `polygon`).
+  [[nodiscard]] std::vector<Triangle> triangles() const;
 };
 
 }  // namespace walk::compiler

@@ -92,13 +92,7 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   auto& stats = result.stats;
   if (circuits == 0 || P == 0) return result;
 
-  std::vector<Triangle> triangles;
-  triangles.reserve(P);
-  for (std::uint32_t i = 0; i < P; ++i) {
-    const auto& p = set.patches[i];
-    triangles.push_back({set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]], i});
-  }
-  const auto caster = make_ray_caster(options.caster, triangles);
+  const auto caster = make_ray_caster(options.caster, set.triangles());
 
   SparseLight unshot(P);
   std::vector<std::uint64_t> patch_hits(P, 0);

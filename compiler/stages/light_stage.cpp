@@ -167,18 +167,21 @@ class LightStage final : public Stage {
       // The display: the direct light as gathered at its vertex plus the patches' shot light around it.
       for (std::size_t i = 0; i < patch_direct.rows(); ++i) r.radiosity.add(i, patch_direct.row(i), -1.0);
       SparseLight light = vertex_radiosity(s.patches, r);
-      if (s.patches_coarser_than_display) {
-        const std::size_t lost = spread_to_refined_vertices(s, light);
-        direct_note +=
-            fmt::format("shot light spread to refined vertices ({} off patches: nearest corner), ", lost);
-      }
-      for (std::size_t i = 0; i < vertex_direct.rows(); ++i) light.add(i, vertex_direct.row(i));
-      if (final_gather) {  // lit vertices show what they gathered; panels keep their patches' glow
+      if (final_gather) {
+        // Every lit vertex shows what it gathered, so the shot light around it is not spread to it; the
+        // panels (no samples) keep their patches' glow.
         for (std::size_t i = 0; i < s.samples.size(); ++i) {
           const std::uint32_t v = s.sample_vertex[i];
           light.set_row(v, vertex_direct.row(v));
           light.add(v, indirect.row(i));
         }
+      } else {
+        if (s.patches_coarser_than_display) {
+          const std::size_t lost = spread_to_refined_vertices(s, light);
+          direct_note +=
+              fmt::format("shot light spread to refined vertices ({} off patches: nearest corner), ", lost);
+        }
+        for (std::size_t i = 0; i < vertex_direct.rows(); ++i) light.add(i, vertex_direct.row(i));
       }
       out.light = light.to_rows();
     } else {
@@ -267,13 +270,9 @@ class LightStage final : public Stage {
   static std::size_t spread_to_refined_vertices(const CompileState& s, SparseLight& light) {
     const PatchSet& set = s.patches;
     std::vector<std::uint8_t> corner(set.vertices.size(), 0);
-    std::vector<Triangle> triangles;
-    for (std::uint32_t i = 0; i < set.patches.size(); ++i) {
-      const auto& p = set.patches[i];
+    for (const Patch& p : set.patches)
       for (const std::uint32_t v : p.v) corner[v] = 1;
-      triangles.push_back({set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]], i});
-    }
-    const TriangleBvh bvh(std::move(triangles));
+    const TriangleBvh bvh(set.triangles());
     SparseLight filled(light);
     std::atomic<std::size_t> lost{0};
     parallel_ranges(set.vertices.size(), 1024, s.options.threads, [&](std::size_t first, std::size_t last) {

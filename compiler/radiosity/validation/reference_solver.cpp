@@ -81,12 +81,7 @@ std::vector<double> reference_radiosity(const PatchSet& set, std::span<const Are
                                         unsigned threads, ReferenceStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   const std::size_t P = set.patches.size();
-  std::vector<Triangle> triangles;
-  for (std::uint32_t i = 0; i < P; ++i) {
-    const auto& p = set.patches[i];
-    triangles.push_back({set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]], i});
-  }
-  const TriangleBvh bvh(std::move(triangles));
+  const TriangleBvh bvh(set.triangles());
   auto corners = [&](std::size_t i) {
     const auto& p = set.patches[i];
     return std::array<model::Vec3, 3>{set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]]};
