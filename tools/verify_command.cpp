@@ -148,6 +148,9 @@ int verify(const VerifyArgs& args) {
     // The combined PVS by the proof's budget: what tightness costs in precompute time.
     for (const int pairs : {0, 4, 16, 64, 256, 1024})
       settings.push_back({PvsMethod::Combined, 32, 256, pairs});
+    // Recomputed as the compile computes it: on the coarse forms, the display's triangles in the caster.
+    const CoarseForms coarse =
+        coarse_forms(b->polygons(), b->indices(), b->coarse_ranges(), b->coarse_indices());
     for (const auto& s : settings) {
       VisibilityConfig cfg;
       cfg.method = s.method;
@@ -159,10 +162,8 @@ int verify(const VerifyArgs& args) {
       cfg.threshold = args.threshold;
       cfg.cull_back_faces = args.options.cull_back_faces;
       const auto t = std::chrono::steady_clock::now();
-      const bool has_coarse = b->coarse_ranges().size() == b->polygons().size();
-      const VisibilityResult vr = compute_visibility(
-          b->vertices(), has_coarse ? b->coarse_indices() : b->indices(),
-          coarse_forms(b->polygons(), b->coarse_ranges()), cfg, group_names, b->polygons(), b->indices());
+      const VisibilityResult vr = compute_visibility(b->vertices(), coarse.indices, coarse.polygons, cfg,
+                                                     group_names, b->polygons(), b->indices());
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
       if (vr.partition.cells.size() != views.size()) {
         std::fprintf(stderr,

@@ -385,24 +385,26 @@ void check_sample_budget(const VisibilityConfig& config, std::size_t cells) {
                   kMaxSampledPvsRays / double(cells))));
 }
 
-std::vector<model::PolygonRecord> coarse_forms(std::span<const model::PolygonRecord> polygons,
-                                               std::span<const model::CoarseRangeRecord> coarse) {
-  std::vector<model::PolygonRecord> out(polygons.begin(), polygons.end());
-  if (coarse.size() != polygons.size()) return out;
-  for (std::size_t p = 0; p < out.size(); ++p) {
-    out[p].first_index = coarse[p].first_index;
-    out[p].index_count = coarse[p].index_count;
+CoarseForms coarse_forms(std::span<const model::PolygonRecord> polygons,
+                         std::span<const std::uint32_t> indices,
+                         std::span<const model::CoarseRangeRecord> coarse_ranges,
+                         std::span<const std::uint32_t> coarse_indices) {
+  CoarseForms out{{polygons.begin(), polygons.end()}, indices};
+  if (coarse_ranges.size() != polygons.size()) return out;
+  for (std::size_t p = 0; p < polygons.size(); ++p) {
+    out.polygons[p].first_index = coarse_ranges[p].first_index;
+    out.polygons[p].index_count = coarse_ranges[p].index_count;
   }
+  out.indices = coarse_indices;
   return out;
 }
 
 CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfig& config) {
   std::vector<std::string> group_names;
   for (const auto& g : out.groups) group_names.emplace_back(out.strings.c_str() + g.name);
-  const std::vector<model::PolygonRecord> coarse = coarse_forms(out.polygons, out.coarse_ranges);
-  const bool has_coarse = out.coarse_ranges.size() == out.polygons.size();
-  const VisibilityResult r = compute_visibility(out.vertices, has_coarse ? out.coarse_indices : out.indices,
-                                                coarse, config, group_names, out.polygons, out.indices);
+  const CoarseForms coarse = coarse_forms(out.polygons, out.indices, out.coarse_ranges, out.coarse_indices);
+  const VisibilityResult r = compute_visibility(out.vertices, coarse.indices, coarse.polygons, config,
+                                                group_names, out.polygons, out.indices);
   out.clusters.clear();
   out.cluster_polygons.clear();
   for (std::size_t i = 0; i < r.polygons.size(); ++i) {

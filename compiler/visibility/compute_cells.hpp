@@ -68,12 +68,18 @@ struct VisibilityResult {
                                                   std::span<const model::PolygonRecord> drawn = {},
                                                   std::span<const std::uint32_t> drawn_indices = {});
 
-// The polygons' records over their coarse forms (the fewest triangles over each polygon's outline, CIDX),
-// which the cells stage works on: the same surfaces as the display's diced and light-refined triangles,
-// without the triangles the light needed (the medium office refined for light: 317,189 triangles drawn,
-// 388 coarse). The diced records where a bundle has no coarse forms.
-[[nodiscard]] std::vector<model::PolygonRecord> coarse_forms(
-    std::span<const model::PolygonRecord> polygons, std::span<const model::CoarseRangeRecord> coarse);
+// The polygons over their coarse forms (the fewest triangles over each polygon's outline), which the cells
+// stage works on: the same surfaces as the display's diced and light-refined triangles, without the
+// triangles the light needed (the medium office refined for light: 317,189 triangles drawn, 388 coarse).
+// The display's own where a bundle has no coarse forms.
+struct CoarseForms {
+  std::vector<model::PolygonRecord> polygons;  // ranges into `indices`
+  std::span<const std::uint32_t> indices;      // CIDX, or INDX
+};
+[[nodiscard]] CoarseForms coarse_forms(std::span<const model::PolygonRecord> polygons,
+                                       std::span<const std::uint32_t> indices,
+                                       std::span<const model::CoarseRangeRecord> coarse_ranges,
+                                       std::span<const std::uint32_t> coarse_indices);
 
 struct CellsStageCounts {
   std::uint64_t polygons_in = 0;
