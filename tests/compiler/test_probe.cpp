@@ -136,51 +136,54 @@ TEST_F(ProbeTest, AMeterBehindAWallSaysSoAndALookReadsLuminance) {
   EXPECT_LT(looking.circuits[0].look_luminance, 80.0);
 }
 
-TEST_F(ProbeTest, GatheredDirectLightGivesTheSameCube) {
-  // The same cube with direct light gathered at the patches' centroids and only reflected light shot: the
-  // light shown, averaged over points spread by area, is the closed form rho flux / (S (1 - rho)) W/m2.
-  std::ifstream in(dir_ / "cube.toml");
+// The cube compiled again with `lighting_keys` appended to its [lighting] table: the light stage's report
+// line and the light shown, averaged over 300 points spread by area.
+struct CubeVariant {
+  std::string light_detail;
+  double shown = 0.0;
+};
+CubeVariant compile_cube_with(const fs::path& dir, const std::string& name,
+                              const std::string& lighting_keys) {
+  std::ifstream in(dir / "cube.toml");
   const std::string scene((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::ofstream(dir_ / "cube-gather.toml") << scene << "direct = \"gather\"\n";
+  std::ofstream(dir / (name + ".toml")) << scene << lighting_keys;
   std::vector<StageReport> stages;
-  ASSERT_TRUE(compile_to_file((dir_ / "cube-gather.toml").string(), (dir_ / "cube-gather.walk").string(),
-                              true, &stages));
-  const auto gathered = model::Bundle::open((dir_ / "cube-gather.walk").string());
+  CubeVariant out;
+  EXPECT_TRUE(
+      compile_to_file((dir / (name + ".toml")).string(), (dir / (name + ".walk")).string(), true, &stages));
   const auto light =
       std::find_if(stages.begin(), stages.end(), [](const auto& s) { return s.name == "light"; });
-  ASSERT_NE(light, stages.end());
-  EXPECT_NE(light->detail.find("direct gathered ("), std::string::npos) << light->detail;
-  const StoredLight stored(*gathered);
-  const auto points = surface_points(*gathered, 300);
-  double shown = 0.0;
-  for (const auto& p : points) shown += stored.on_surface(p.position, p.normal).g / points.size();
-  const double expected = kRho * kFlux / 179.0 / (6.0 * kSide * kSide * (1.0 - kRho));
-  std::printf("CIE cube, direct light gathered: shown %.4f, closed form %.4f W/m2\n", shown, expected);
-  EXPECT_NEAR(shown, expected, 0.03 * expected);
+  EXPECT_NE(light, stages.end());
+  if (light == stages.end()) return out;
+  out.light_detail = light->detail;
+  const auto bundle = model::Bundle::open((dir / (name + ".walk")).string());
+  const StoredLight stored(*bundle);
+  const auto points = surface_points(*bundle, 300);
+  for (const auto& p : points) out.shown += stored.on_surface(p.position, p.normal).g / points.size();
+  return out;
+}
+
+// The closed form of the cube's mean radiosity: rho flux / (S (1 - rho)) W/m2 (179 lm/W).
+constexpr double kCubeRadiosity = kRho * kFlux / 179.0 / (6.0 * kSide * kSide * (1.0 - kRho));
+
+TEST_F(ProbeTest, GatheredDirectLightGivesTheSameCube) {
+  // The same cube with direct light gathered at the patches' centroids and only reflected light shot: the
+  // light shown is the closed form.
+  const CubeVariant v = compile_cube_with(dir_, "cube-gather", "direct = \"gather\"\n");
+  EXPECT_NE(v.light_detail.find("direct gathered ("), std::string::npos) << v.light_detail;
+  std::printf("CIE cube, direct light gathered: shown %.4f, closed form %.4f W/m2\n", v.shown,
+              kCubeRadiosity);
+  EXPECT_NEAR(v.shown, kCubeRadiosity, 0.03 * kCubeRadiosity);
 }
 
 TEST_F(ProbeTest, IndirectLightGatheredAtTheVerticesGivesTheSameCube) {
   // The same cube with direct light gathered and indirect light gathered at each vertex from the solved
   // patches (the final gather): the light shown is again the closed form.
-  std::ifstream in(dir_ / "cube.toml");
-  const std::string scene((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::ofstream(dir_ / "cube-final.toml") << scene << "direct = \"gather\"\nindirect = \"gather\"\n";
-  std::vector<StageReport> stages;
-  ASSERT_TRUE(compile_to_file((dir_ / "cube-final.toml").string(), (dir_ / "cube-final.walk").string(), true,
-                              &stages));
-  const auto bundle = model::Bundle::open((dir_ / "cube-final.walk").string());
-  const auto light =
-      std::find_if(stages.begin(), stages.end(), [](const auto& s) { return s.name == "light"; });
-  ASSERT_NE(light, stages.end());
-  EXPECT_NE(light->detail.find("indirect gathered at vertices ("), std::string::npos) << light->detail;
-  const StoredLight stored(*bundle);
-  const auto points = surface_points(*bundle, 300);
-  double shown = 0.0;
-  for (const auto& p : points) shown += stored.on_surface(p.position, p.normal).g / points.size();
-  const double expected = kRho * kFlux / 179.0 / (6.0 * kSide * kSide * (1.0 - kRho));
-  std::printf("CIE cube, indirect light gathered at vertices: shown %.4f, closed form %.4f W/m2\n", shown,
-              expected);
-  EXPECT_NEAR(shown, expected, 0.03 * expected);
+  const CubeVariant v = compile_cube_with(dir_, "cube-final", "direct = \"gather\"\nindirect = \"gather\"\n");
+  EXPECT_NE(v.light_detail.find("indirect gathered at vertices ("), std::string::npos) << v.light_detail;
+  std::printf("CIE cube, indirect light gathered at vertices: shown %.4f, closed form %.4f W/m2\n", v.shown,
+              kCubeRadiosity);
+  EXPECT_NEAR(v.shown, kCubeRadiosity, 0.03 * kCubeRadiosity);
 }
 
 TEST_F(ProbeTest, TheReferenceFindsPointsNoViewSees) {
@@ -218,7 +221,7 @@ TEST_F(ProbeTest, PathTracedReferenceAndDisplayedLightMatchTheClosedForm) {
   }
   traced /= points.size();
   shown /= points.size();
-  const double expected = kRho * kFlux / 179.0 / (6.0 * kSide * kSide * (1.0 - kRho));
+  const double expected = kCubeRadiosity;
   std::printf("CIE cube mean radiosity: traced %.4f (+- %.4f), shown %.4f, closed form %.4f W/m2\n", traced,
               std::sqrt(error2) / points.size(), shown, expected);
   // 300 points by area sample the faces' smooth light to about 1 %; the trace's own noise is smaller.
