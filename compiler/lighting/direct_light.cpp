@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "common/parallel_for.hpp"
+#include "compiler/lighting/polygon_irradiance.hpp"
 #include "compiler/photometry/emission.hpp"
 
 namespace walk::compiler {
@@ -34,6 +35,13 @@ void panel_points(const model::Luminaire& l, int n, std::mt19937_64& rng, std::v
     const double sv = ((i / cols) + u01(rng)) / rows - 0.5;
     out.push_back(l.position + u * (su * l.width) + v * (sv * l.height));
   }
+}
+
+// The luminaire rectangle's four corners.
+void panel_corners(const model::Luminaire& l, std::vector<model::Vec3>& out) {
+  const model::Vec3 u = glm::normalize(l.u_axis) * (0.5 * l.width);
+  const model::Vec3 v = glm::normalize(glm::cross(l.normal, l.u_axis)) * (0.5 * l.height);
+  out = {l.position - u - v, l.position + u - v, l.position + u + v, l.position - u + v};
 }
 
 // Radiant intensity per watt of a point light towards unit direction `w` (W/sr per W): its measured table,
@@ -86,7 +94,7 @@ SparseLight direct_light(std::span<const SurfaceSample> samples,
   std::atomic<std::uint64_t> rays{0}, blocked{0};
   constexpr std::size_t kChunk = 256;
   parallel_ranges(samples.size(), kChunk, options.threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<model::Vec3> points;
+    std::vector<model::Vec3> points, corners;
     std::uint64_t my_rays = 0, my_blocked = 0;
     {
       for (std::size_t s = begin; s < end; ++s) {
@@ -101,7 +109,9 @@ SparseLight direct_light(std::span<const SurfaceSample> samples,
           const model::Vec3 ln = glm::normalize(l.normal);
           if (glm::dot(p.position - l.position, ln) <= 0.0) continue;  // behind the panel
           panel_points(l, options.samples_per_luminaire, rng, points);
-          double sum = 0.0;
+          // The samples judge only how much of the panel is shadowed (each weighted by what it would
+          // bring); the unshadowed light is the panel's exact projected solid angle.
+          double weight = 0.0, visible = 0.0;
           for (const auto& q : points) {
             const model::Vec3 d = q - origin;
             const double r2 = std::max(glm::dot(d, d), kMinDistanceSquared);
@@ -109,15 +119,21 @@ SparseLight direct_light(std::span<const SurfaceSample> samples,
             const double cos_r = glm::dot(p.normal, d) / r;
             const double cos_e = -glm::dot(ln, d) / r;
             if (cos_r <= 0.0 || cos_e <= 0.0) continue;
+            const double w = cos_r * cos_e / r2;
+            weight += w;
             ++my_rays;
             if (occluders.occluded(origin, d, 0.0, 1.0)) {
               ++my_blocked;
               continue;
             }
-            sum += cos_r * cos_e / r2;
+            visible += w;
           }
-          // Lambertian panel: radiance Phi/(pi A); each point stands for A/n of its area.
-          const double irradiance_per_watt = sum / (std::numbers::pi * points.size());
+          // No sample in front of the receiver: only a sliver of the panel is, too little to shadow-test.
+          if (visible <= 0.0) continue;  // also every sample shadowed: no entry
+          // Lambertian panel: radiance Phi / (pi A).
+          panel_corners(l, corners);
+          const double irradiance_per_watt = projected_solid_angle(corners, origin, p.normal) *
+                                             (visible / weight) / (std::numbers::pi * l.width * l.height);
           if (irradiance_per_watt <= 0.0) continue;  // every point shadowed or turned away: no entry
           double* b = out.at(s, l.circuit);
           for (int c = 0; c < 3; ++c) b[c] += p.albedo[c] * l.power[c] * irradiance_per_watt;
