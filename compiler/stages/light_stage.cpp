@@ -20,6 +20,7 @@
 #include "compiler/geometry/triangle_weights.hpp"
 #include "compiler/lighting/direct_light.hpp"
 #include "compiler/lighting/final_gather.hpp"
+#include "compiler/lighting/interpolation_check.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/scene/work_budget.hpp"
@@ -41,6 +42,8 @@ constexpr double kTargetSlack = 1.15;
 constexpr double kLocateOffset = 1e-3;
 // The final gather's relative error where the scene gives no target: the shipped scenes' usual target.
 constexpr double kDefaultGatherError = 0.05;
+// The interpolation checks' draw of triangles: fixed, so a compile is repeatable.
+constexpr std::uint64_t kInterpolationSeed = 0x5eed;
 
 template <typename T>
 std::uint64_t hash_vector(std::uint64_t h, const std::vector<T>& v) {
@@ -137,9 +140,16 @@ class LightStage final : public Stage {
     DirectLightStats direct_stats;
     std::string direct_note;
     const bool final_gather = s.config.lighting.gather_direct && s.config.lighting.gather_indirect;
+    // With the final gather, the light between vertices is checked too (interpolation_check.hpp).
+    InterpolationChecks checks;
+    SparseLight check_direct;
+    if (final_gather)
+      checks =
+          pick_interpolation_checks(s.samples, s.sample_vertex, s.patches.vertices, s.out.indices,
+                                    std::min(kInterpolationChecks, s.samples.size()), kInterpolationSeed);
     if (s.config.lighting.gather_direct && (s.patches_coarser_than_display || final_gather)) {
       std::size_t from_refinement = 0;
-      vertex_direct = gather_vertex_direct(s, &direct_stats, from_refinement);
+      vertex_direct = gather_vertex_direct(s, &direct_stats, from_refinement, checks.points, &check_direct);
       patch_direct = patch_means(s.patches, vertex_direct);
       ro.gathered_direct = &patch_direct;
       direct_note =
@@ -155,14 +165,16 @@ class LightStage final : public Stage {
             ? solve_to_target(s, emitters, points, circuits, ro, *s.config.lighting.target_error, how)
             : solve_radiosity(s.patches, emitters, points, circuits, ro);
     out.polygon_light = polygon_radiosity(s.patches, r, out.polygons.size());
-    FinalGatherStats gathered;
-    SparseLight indirect;
+    FinalGatherStats gathered, checked;
+    SparseLight indirect, check_indirect;
     if (final_gather) {
-      indirect = gather_indirect_at_vertices(s, emitters, r, vertex_direct, &gathered);
+      indirect = gather_indirect_at_vertices(s, emitters, r, vertex_direct, checks, check_direct, &gathered,
+                                             check_indirect, &checked);
       direct_note += fmt::format(
           "indirect gathered at vertices ({} rays, estimated {:.2f}%, {} at the cap, {:.0f}% of the light), ",
           gathered.rays, 100.0 * gathered.estimated_error, gathered.capped, 100.0 * gathered.gathered_share);
     }
+    double interpolation = 0.0;
     if (!vertex_direct.empty()) {
       // The display: the direct light as gathered at its vertex plus the patches' shot light around it.
       for (std::size_t i = 0; i < patch_direct.rows(); ++i) r.radiosity.add(i, patch_direct.row(i), -1.0);
@@ -183,13 +195,21 @@ class LightStage final : public Stage {
         }
         for (std::size_t i = 0; i < vertex_direct.rows(); ++i) light.add(i, vertex_direct.row(i));
       }
+      if (final_gather) {
+        std::vector<double> truth(checks.points.size());
+        for (std::size_t k = 0; k < truth.size(); ++k)
+          truth[k] = check_direct.scalar(k) + check_indirect.scalar(k);
+        interpolation = interpolation_error(checks, light, truth, gathered.estimated_error);
+        direct_note += fmt::format("between vertices {:.2f}% at {} triangle centroids ({} rays), ",
+                                   100.0 * interpolation, checks.points.size(), checked.rays);
+      }
       out.light = light.to_rows();
     } else {
       out.light = vertex_radiosity(s.patches, r).to_rows();
     }
     const auto& st = r.stats;
     auto outcome = StageOutcome::ran(
-        s.patches.patches.size(), st.rays + gathered.rays,
+        s.patches.patches.size(), st.rays + gathered.rays + checked.rays,
         fmt::format(
             "radiosity: {}, estimated error {:.2f}%; {} patches, {} circuits, {} rays in {} shots / {} "
             "rounds, {:.2f} Mrays/s, residual {:.2f}%, absorbed {:.1f} W escaped {:.1f} W of {:.1f} W shot",
@@ -197,18 +217,24 @@ class LightStage final : public Stage {
             st.shots, st.rounds, st.rays / st.seconds * 1e-6, 100.0 * st.unshot / st.emitted, st.absorbed,
             st.escaped, st.emitted));
     // With a final gather the shown light's noise is the gather's and the patches' shooting noise in the
-    // share of it that was gathered (an upper bound: a vertex averages it over every patch it sees).
+    // share of it that was gathered (an upper bound: a vertex averages it over every patch it sees), and
+    // its error between vertices is measured.
     outcome.estimated_error =
-        final_gather ? std::hypot(gathered.estimated_error, gathered.gathered_share * st.estimated_error)
-                     : st.estimated_error;
+        final_gather
+            ? std::hypot(std::hypot(gathered.estimated_error, gathered.gathered_share * st.estimated_error),
+                         interpolation)
+            : st.estimated_error;
     return outcome;
   }
 
   // Indirect light at every lit vertex, gathered from the solved patches (each patch's radiosity less its
   // own emission: panels' glow reaches the vertices as their gathered direct light).
+  // The same at the interpolation checks, given their direct light, into `check_light`.
   static SparseLight gather_indirect_at_vertices(const CompileState& s, std::span<const AreaEmitter> emitters,
                                                  const RadiosityResult& r, const SparseLight& vertex_direct,
-                                                 FinalGatherStats* stats) {
+                                                 const InterpolationChecks& checks,
+                                                 const SparseLight& check_direct, FinalGatherStats* stats,
+                                                 SparseLight& check_light, FinalGatherStats* check_stats) {
     SparseLight outgoing = r.radiosity;
     for (const AreaEmitter& e : emitters) {
       double* b = outgoing.at(e.patch, e.circuit);
@@ -223,17 +249,27 @@ class LightStage final : public Stage {
     o.target_error = s.config.lighting.target_error.value_or(kDefaultGatherError);
     o.threads = s.options.threads;
     o.caster = s.config.lighting.ray_caster;
+    if (!checks.points.empty()) {
+      std::vector<double> check_shown(checks.points.size());
+      for (std::size_t k = 0; k < check_shown.size(); ++k) check_shown[k] = check_direct.scalar(k);
+      check_light = gather_indirect(s.patches, outgoing, checks.points, check_shown, o, check_stats);
+    }
     return gather_indirect(s.patches, outgoing, receivers, shown_direct, o, stats);
   }
 
   // Direct light gathered at `samples` against the scene's shadow occluders (consumed: a compile gathers
-  // once), written at row index[i] of `count` rows; rows no sample lands on stay empty.
+  // once), written at row index[i] of `count` rows; rows no sample lands on stay empty. With `extra_light`,
+  // also at `extra`, a row each.
   static SparseLight gather_direct(CompileState& s, std::span<const SurfaceSample> samples,
                                    std::span<const std::uint32_t> index, std::size_t count,
-                                   DirectLightStats* stats) {
+                                   DirectLightStats* stats, std::span<const SurfaceSample> extra = {},
+                                   SparseLight* extra_light = nullptr) {
     const TriangleBvh bvh(std::move(s.occluders));
-    const auto light = direct_light(samples, s.model.luminaires, s.model.circuits.size(), bvh,
-                                    {s.config.lighting.samples_per_luminaire, s.options.threads}, stats);
+    const DirectLightOptions options{s.config.lighting.samples_per_luminaire, s.options.threads};
+    if (extra_light)
+      *extra_light = direct_light(extra, s.model.luminaires, s.model.circuits.size(), bvh, options);
+    const auto light =
+        direct_light(samples, s.model.luminaires, s.model.circuits.size(), bvh, options, stats);
     SparseLight out(count);
     for (std::size_t i = 0; i < samples.size(); ++i) out.set_row(index[i], light.row(i));
     return out;
@@ -242,10 +278,13 @@ class LightStage final : public Stage {
   // Direct light at every lit vertex (panels glow, so their rows stay empty), a row per vertex: the light
   // refinement's where it gathered it (the values its edges were tested with), gathered here for the rest.
   // `refined`: how many vertices took the refinement's.
-  static SparseLight gather_vertex_direct(CompileState& s, DirectLightStats* stats, std::size_t& refined) {
+  // With `extra_light`, also at `extra`, a row each.
+  static SparseLight gather_vertex_direct(CompileState& s, DirectLightStats* stats, std::size_t& refined,
+                                          std::span<const SurfaceSample> extra = {},
+                                          SparseLight* extra_light = nullptr) {
     refined = 0;
     if (s.sample_refined.empty())
-      return gather_direct(s, s.samples, s.sample_vertex, s.out.vertices.size(), stats);
+      return gather_direct(s, s.samples, s.sample_vertex, s.out.vertices.size(), stats, extra, extra_light);
     std::vector<SurfaceSample> rest;
     std::vector<std::uint32_t> rest_vertex;
     for (std::size_t i = 0; i < s.samples.size(); ++i)
@@ -253,7 +292,7 @@ class LightStage final : public Stage {
         rest.push_back(s.samples[i]);
         rest_vertex.push_back(s.sample_vertex[i]);
       }
-    auto out = gather_direct(s, rest, rest_vertex, s.out.vertices.size(), stats);
+    auto out = gather_direct(s, rest, rest_vertex, s.out.vertices.size(), stats, extra, extra_light);
     for (std::size_t i = 0; i < s.samples.size(); ++i) {
       if (!s.sample_refined[i]) continue;
       ++refined;
