@@ -1,9 +1,12 @@
 // meta: the bundle's header (origin, bounds, scene hash, exposure) and its material, group and circuit
-// tables. Automatic exposure maps the 95th percentile of lit-surface radiosity to 80 % of white.
+// tables. Automatic exposure maps the 95th percentile (by area) of lit-surface radiosity to 80 % of white.
 #include <spdlog/fmt/fmt.h>
 
 #include <algorithm>
+#include <glm/geometric.hpp>
+#include <vector>
 
+#include "compiler/lighting/auto_exposure.hpp"
 #include "compiler/stages/stages.hpp"
 #include "model/version.hpp"
 
@@ -14,21 +17,34 @@ namespace {
 constexpr double kExposurePercentile = 0.95;
 constexpr double kExposureHeadroom = 0.8;
 
+// Over the lit vertices, each weighted by a third of the area of the triangles it is a corner of.
 float automatic_exposure(const CompileState& s) {
-  std::vector<float> totals;
-  for (std::size_t i = 0; i < s.samples.size() && !s.out.light.empty(); ++i) {
-    float sum = 0.0f;
-    for (const model::LightEntry& e : s.out.light.row(s.sample_vertex[i]))
+  if (s.out.light.empty()) return 1.0f;
+  const auto& vertices = s.out.vertices;
+  std::vector<double> area(vertices.size(), 0.0);
+  const auto& idx = s.out.indices;
+  for (std::size_t k = 0; k + 2 < idx.size(); k += 3) {
+    if (std::max({idx[k], idx[k + 1], idx[k + 2]}) >= vertices.size()) continue;
+    const auto& a = vertices[idx[k]].position;
+    const auto& b = vertices[idx[k + 1]].position;
+    const auto& c = vertices[idx[k + 2]].position;
+    const model::Vec3 ab(b[0] - a[0], b[1] - a[1], b[2] - a[2]), ac(c[0] - a[0], c[1] - a[1], c[2] - a[2]);
+    const double third = glm::length(glm::cross(ab, ac)) / 6.0;
+    for (int j = 0; j < 3; ++j) area[idx[k + j]] += third;
+  }
+  std::vector<double> totals, weights;
+  for (std::size_t i = 0; i < s.samples.size(); ++i) {
+    const std::uint32_t v = s.sample_vertex[i];
+    double sum = 0.0;
+    for (const model::LightEntry& e : s.out.light.row(v))
       for (const float b : e.rgb) sum += b;
-    if (sum > 0.0f) totals.push_back(sum / 3.0f);
+    if (sum > 0.0 && v < area.size()) {
+      totals.push_back(sum / 3.0);
+      weights.push_back(area[v]);
+    }
   }
-  float exposure = 1.0f;
-  if (!totals.empty()) {
-    auto nth = totals.begin() + static_cast<std::ptrdiff_t>(kExposurePercentile * (totals.size() - 1));
-    std::nth_element(totals.begin(), nth, totals.end());
-    exposure = static_cast<float>(*nth / kExposureHeadroom);
-  }
-  return std::max(exposure, 1e-6f);
+  const double at = weighted_percentile(totals, weights, kExposurePercentile);
+  return std::max(static_cast<float>(at / kExposureHeadroom), 1e-6f);
 }
 
 class MetaStage final : public Stage {
