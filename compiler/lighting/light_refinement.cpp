@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <unordered_map>
 #include <unordered_set>
@@ -31,6 +32,62 @@ std::vector<double> irradiance(const std::vector<SurfaceSample>& points,
     for (const CircuitLight& e : light.row(i))
       out[i] += model::luminance_weight({e.rgb[0], e.rgb[1], e.rgb[2]});
   return out;
+}
+
+// A panel hung parallel to a surface and close in front of it (a ceiling's lamp 2 cm below it) hides the
+// room from the surface along its outline: just inside the outline the surface sees the panel's back, a few
+// centimetres out the whole room. The surface gets no direct light there and its indirect light is gathered
+// only after meshing, so no light test can see that edge: the edges crossing the outline are split as far
+// as the refinement goes. Panels farther than this (metres) in front light the surface directly and are
+// left to the light test.
+constexpr double kHungGap = 0.1;
+// Surface and panel planes within this (cosine) of each other are parallel.
+constexpr double kParallelCosine = 0.999;
+
+struct HungPanel {
+  model::Vec3 centre, u, v;  // u, v: unit, in the panel's plane
+  double half_width, half_height;
+  // Is `p` (on the surface) within the panel's outline, seen along the surface's normal?
+  [[nodiscard]] bool covers(const model::Vec3& p) const {
+    const model::Vec3 d = p - centre;
+    return std::abs(glm::dot(d, u)) <= half_width && std::abs(glm::dot(d, v)) <= half_height;
+  }
+};
+
+// The area luminaires hung close in front of each lit mesh, parallel to it and over its extent.
+std::vector<std::vector<HungPanel>> hung_panels(const std::vector<PolygonMesh>& meshes,
+                                                const std::vector<bool>& lit,
+                                                const std::vector<model::Luminaire>& luminaires) {
+  std::vector<std::vector<HungPanel>> out(meshes.size());
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const auto& mesh = meshes[m];
+    if (!lit[m] || mesh.vertices.empty()) continue;
+    model::Vec3 lo = mesh.vertices.front(), hi = lo;
+    for (const auto& p : mesh.vertices) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    for (const auto& l : luminaires) {
+      if (l.kind != model::LuminaireKind::Area) continue;
+      const model::Vec3 n = glm::normalize(l.normal);
+      const double gap = glm::dot(l.position - mesh.vertices.front(), mesh.normal);
+      if (std::abs(glm::dot(n, mesh.normal)) < kParallelCosine || gap <= 0.0 || gap > kHungGap) continue;
+      HungPanel h{l.position - mesh.normal * gap, glm::normalize(l.u_axis),
+                  glm::normalize(glm::cross(n, l.u_axis)), 0.5 * l.width, 0.5 * l.height};
+      const double reach = h.half_width + h.half_height;  // the outline lies within this of its centre
+      bool near = true;
+      for (int a = 0; a < 3; ++a) near = near && h.centre[a] + reach >= lo[a] && h.centre[a] - reach <= hi[a];
+      if (near) out[m].push_back(h);
+    }
+  }
+  return out;
+}
+
+// Does the edge from a to b cross the outline of one of `panels`?
+bool crosses_outline(const std::vector<HungPanel>& panels, const model::Vec3& a, const model::Vec3& b) {
+  for (const auto& h : panels)
+    if (h.covers(a) != h.covers(b)) return true;
+  return false;
 }
 
 // Replaces triangle t of `mesh` by its pieces for the midpoints of its marked edges (kNone: not marked);
@@ -105,7 +162,9 @@ LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, co
         square += e[n] * e[n];
       }
     }
-    if (n == 0 || square <= 0.0) return stats;
+    const auto hung = hung_panels(meshes, lit, luminaires);
+    const bool outlines = std::any_of(hung.begin(), hung.end(), [](const auto& h) { return !h.empty(); });
+    if (n == 0 || (square <= 0.0 && !outlines)) return stats;
     const double allowed = o.tolerance * std::sqrt(square / double(n));
 
     std::size_t triangles = 0;
@@ -144,10 +203,12 @@ LightRefinementStats refine_by_direct_light(std::vector<PolygonMesh>& meshes, co
       std::vector<std::unordered_map<std::uint64_t, std::uint32_t>> split(meshes.size());
       for (std::size_t i = 0; i < edges.size(); ++i) {
         const auto& [m, a, b] = edges[i];
-        if (std::abs(e[i] - 0.5 * (value[m][a] + value[m][b])) <= allowed) {
+        const bool outline = crosses_outline(hung[m], meshes[m].vertices[a], meshes[m].vertices[b]);
+        if (!outline && std::abs(e[i] - 0.5 * (value[m][a] + value[m][b])) <= allowed) {
           settled[m].insert(edge_key(a, b));
           continue;
         }
+        stats.outline_splits += outline;
         split[m][edge_key(a, b)] = static_cast<std::uint32_t>(meshes[m].vertices.size());
         meshes[m].vertices.push_back(midpoints[i].position);
         value[m].push_back(e[i]);

@@ -3,7 +3,9 @@
 // adaptive subdivision, tested on edges): the display interpolates light linearly between vertices, so an
 // edge whose midpoint's gathered direct light differs from the mean of its ends by more than the tolerance
 // is split there, and its triangles with it, until every edge passes or reaches the shortest length. Light
-// resolution then follows the light (shadow edges, the falloff next to a lamp), not the dicing grid.
+// resolution then follows the light (shadow edges, the falloff next to a lamp), not the dicing grid. Edges
+// crossing the outline of a panel hung parallel just in front of the surface (a ceiling's lamp) are split
+// too, whatever the direct light: the panel hides the room from the surface there (light_refinement.cpp).
 #include <cstddef>
 #include <vector>
 
@@ -27,6 +29,7 @@ struct LightRefinementOptions {
 struct LightRefinementStats {
   std::size_t edges_tested = 0;
   std::size_t edges_split = 0;
+  std::size_t outline_splits = 0;  // of which for crossing the outline of a panel hung close in front
   std::size_t triangles_added = 0;
   int levels = 0;
   double shadow_rays = 0.0;

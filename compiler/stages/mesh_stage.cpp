@@ -237,15 +237,16 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
   add_polygon_textures(s.model, emitted_, out);
   return StageOutcome::ran(
       s.model.polygons.size() + panels.size(), out.polygons.size(),
-      fmt::format("{} vertices {} triangles grid {} m; light refinement {} of {} edges split in {} levels "
-                  "({} shadow rays); coarse {} triangles ({} polygons kept diced); "
-                  "T-junctions {} vertices into {} triangles (coarse {} into {}, {} left unrepaired); "
-                  "textures {} ({} MiB)",
-                  out.vertices.size(), out.indices.size() / 3, s.config.lighting.grid, refined.edges_split,
-                  refined.edges_tested, refined.levels, refined.shadow_rays, out.coarse_indices.size() / 3,
-                  coarse_fallbacks_, seams.vertices_inserted, seams.triangles_split,
-                  coarse_seams.vertices_inserted, coarse_seams.triangles_split, coarse_unrepaired_,
-                  out.textures.size(), out.texels.size() >> 20));
+      fmt::format(
+          "{} vertices {} triangles grid {} m; light refinement {} of {} edges split ({} along hung "
+          "panels' outlines) in {} levels ({} shadow rays); coarse {} triangles ({} polygons kept diced); "
+          "T-junctions {} vertices into {} triangles (coarse {} into {}, {} left unrepaired); "
+          "textures {} ({} MiB)",
+          out.vertices.size(), out.indices.size() / 3, s.config.lighting.grid, refined.edges_split,
+          refined.edges_tested, refined.outline_splits, refined.levels, refined.shadow_rays,
+          out.coarse_indices.size() / 3, coarse_fallbacks_, seams.vertices_inserted, seams.triangles_split,
+          coarse_seams.vertices_inserted, coarse_seams.triangles_split, coarse_unrepaired_,
+          out.textures.size(), out.texels.size() >> 20));
 }
 
 }  // namespace

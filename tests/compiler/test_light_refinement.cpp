@@ -159,5 +159,47 @@ TEST(LightRefinement, UnlitMeshesPanelsAndDarkScenesStayAsTheyWere) {
   EXPECT_EQ(dark[0].triangles, before.triangles);
 }
 
+// A 0.6 m panel hung 2 cm in front of the floor, facing away from it (a ceiling's lamp, upside down): the
+// floor gets no direct light, yet every edge crossing the panel's outline is split down to the shortest
+// length, since just inside the outline the floor sees the panel's back and just outside the whole room.
+TEST(LightRefinement, EdgesCrossingTheOutlineOfAPanelHungJustInFrontAreSplit) {
+  model::Luminaire panel;
+  panel.position = Vec3(1.9, 2.1, 0.02);
+  panel.normal = Vec3(0, 0, 1);
+  panel.width = panel.height = 0.6;
+  panel.power = model::Rgb(kPower);
+  LightRefinementOptions o;
+  o.min_edge = 0.2;  // edges of 0.4 m and more crossing the outline are split
+  o.max_levels = 8;
+  std::vector<PolygonMesh> meshes{floor_mesh(0.5)};
+  const auto stats = refine_by_direct_light(meshes, {true}, {panel}, far_away_occluder(), o);
+  EXPECT_GT(stats.outline_splits, 0u);
+  EXPECT_EQ(stats.outline_splits, stats.edges_split) << "no direct light reaches the floor";
+  auto covered = [&](const Vec3& p) {
+    return std::abs(p.x - panel.position.x) <= 0.3 && std::abs(p.y - panel.position.y) <= 0.3;
+  };
+  const auto& m = meshes[0];
+  double area = 0.0;
+  for (std::size_t t = 0; t < m.triangles.size(); t += 3) {
+    const Vec3 a = m.vertices[m.triangles[t]], b = m.vertices[m.triangles[t + 1]],
+               c = m.vertices[m.triangles[t + 2]];
+    area += 0.5 * glm::cross(b - a, c - a).z;
+    for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+      if (covered(p) != covered(q)) {
+        EXPECT_LT(glm::length(q - p), 2.0 * o.min_edge);
+      }
+  }
+  EXPECT_NEAR(area, kSide * kSide, 1e-9);
+
+  // Hung farther than a few centimetres, or tilted, it is left to the light test (no light here: no split).
+  for (const Vec3& move : {Vec3(0, 0, 0.5), Vec3(0, 0, 0)}) {
+    model::Luminaire other = panel;
+    other.position += move;
+    if (glm::length(move) == 0.0) other.normal = glm::normalize(Vec3(1, 0, 1));
+    std::vector<PolygonMesh> plain{floor_mesh(0.5)};
+    EXPECT_EQ(refine_by_direct_light(plain, {true}, {other}, far_away_occluder(), o).outline_splits, 0u);
+  }
+}
+
 }  // namespace test_light_refinement
 }  // namespace walk::compiler
