@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <unordered_map>
 #include <unordered_set>
@@ -62,11 +61,8 @@ std::vector<std::vector<HungPanel>> hung_panels(const std::vector<PolygonMesh>& 
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const auto& mesh = meshes[m];
     if (!lit[m] || mesh.vertices.empty()) continue;
-    model::Vec3 lo = mesh.vertices.front(), hi = lo;
-    for (const auto& p : mesh.vertices) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
+    model::Bounds extent;
+    for (const auto& p : mesh.vertices) extent.add(p);
     for (const auto& l : luminaires) {
       if (l.kind != model::LuminaireKind::Area) continue;
       const model::Vec3 n = glm::normalize(l.normal);
@@ -76,7 +72,8 @@ std::vector<std::vector<HungPanel>> hung_panels(const std::vector<PolygonMesh>& 
                   glm::normalize(glm::cross(n, l.u_axis)), 0.5 * l.width, 0.5 * l.height};
       const double reach = h.half_width + h.half_height;  // the outline lies within this of its centre
       bool near = true;
-      for (int a = 0; a < 3; ++a) near = near && h.centre[a] + reach >= lo[a] && h.centre[a] - reach <= hi[a];
+      for (int a = 0; a < 3; ++a)
+        near = near && h.centre[a] + reach >= extent.min[a] && h.centre[a] - reach <= extent.max[a];
       if (near) out[m].push_back(h);
     }
   }
