@@ -49,6 +49,12 @@ void Bounds::add(const Vec3& p) {
   max = glm::max(max, p);
 }
 
+std::array<Vec3, 4> panel_corners(const Luminaire& l) {
+  const Vec3 u = glm::normalize(l.u_axis) * (0.5 * l.width);
+  const Vec3 v = glm::normalize(glm::cross(l.normal, l.u_axis)) * (0.5 * l.height);
+  return {l.position - u - v, l.position + u - v, l.position + u + v, l.position - u + v};
+}
+
 Bounds bounds_of(const Model& model) {
   Bounds b;
   for (const auto& poly : model.polygons)

@@ -2,6 +2,7 @@
 // The in-memory building: what every importer produces and every compiler stage reads.
 // Coordinates are double precision metres relative to `origin` (world = origin + local), so that models
 // authored far from the world origin keep full precision; rendering converts local coordinates to float.
+#include <array>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <memory>
@@ -90,6 +91,9 @@ struct Luminaire {
   std::uint32_t circuit = 0;
   std::shared_ptr<const IntensityDistribution> distribution;  // Photometric only; its shape, not its scale
 };
+
+// An area luminaire's rectangle: its four corners, counter-clockwise about `normal`.
+[[nodiscard]] std::array<Vec3, 4> panel_corners(const Luminaire& l);
 
 // A light circuit: luminaires switched and dimmed together by one dimmer channel.
 struct Circuit {

@@ -37,13 +37,6 @@ void panel_points(const model::Luminaire& l, int n, std::mt19937_64& rng, std::v
   }
 }
 
-// The luminaire rectangle's four corners.
-void panel_corners(const model::Luminaire& l, std::vector<model::Vec3>& out) {
-  const model::Vec3 u = glm::normalize(l.u_axis) * (0.5 * l.width);
-  const model::Vec3 v = glm::normalize(glm::cross(l.normal, l.u_axis)) * (0.5 * l.height);
-  out = {l.position - u - v, l.position + u - v, l.position + u + v, l.position - u + v};
-}
-
 // Radiant intensity per watt of a point light towards unit direction `w` (W/sr per W): its measured table,
 // uniform over the sphere, or cos^n about the axis inside the cone, normalised so the light emits exactly its
 // power.
@@ -94,7 +87,7 @@ SparseLight direct_light(std::span<const SurfaceSample> samples,
   std::atomic<std::uint64_t> rays{0}, blocked{0};
   constexpr std::size_t kChunk = 256;
   parallel_ranges(samples.size(), kChunk, options.threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<model::Vec3> points, corners;
+    std::vector<model::Vec3> points;
     std::uint64_t my_rays = 0, my_blocked = 0;
     {
       for (std::size_t s = begin; s < end; ++s) {
@@ -131,9 +124,9 @@ SparseLight direct_light(std::span<const SurfaceSample> samples,
           // No sample in front of the receiver: only a sliver of the panel is, too little to shadow-test.
           if (visible <= 0.0) continue;  // also every sample shadowed: no entry
           // Lambertian panel: radiance Phi / (pi A).
-          panel_corners(l, corners);
-          const double irradiance_per_watt = projected_solid_angle(corners, origin, p.normal) *
-                                             (visible / weight) / (std::numbers::pi * l.width * l.height);
+          const double irradiance_per_watt =
+              projected_solid_angle(model::panel_corners(l), origin, p.normal) * (visible / weight) /
+              (std::numbers::pi * l.width * l.height);
           if (irradiance_per_watt <= 0.0) continue;  // every point shadowed or turned away: no entry
           double* b = out.at(s, l.circuit);
           for (int c = 0; c < 3; ++c) b[c] += p.albedo[c] * l.power[c] * irradiance_per_watt;

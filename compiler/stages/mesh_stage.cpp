@@ -5,7 +5,6 @@
 #include <spdlog/fmt/fmt.h>
 
 #include <algorithm>
-#include <glm/geometric.hpp>
 #include <optional>
 #include <span>
 
@@ -26,10 +25,9 @@ constexpr double kPanelReflectance = 0.8;
 constexpr std::uint32_t kNoLuminaire = UINT32_MAX;
 
 model::Polygon panel_polygon(const model::Luminaire& l) {
-  const model::Vec3 u = glm::normalize(l.u_axis) * (0.5 * l.width);
-  const model::Vec3 v = glm::normalize(glm::cross(l.normal, l.u_axis)) * (0.5 * l.height);
+  const auto corners = model::panel_corners(l);
   model::Polygon p;
-  p.vertices = {l.position - u - v, l.position + u - v, l.position + u + v, l.position - u + v};
+  p.vertices.assign(corners.begin(), corners.end());
   p.role = model::Role::Luminaire;
   p.name = l.name;
   return p;
