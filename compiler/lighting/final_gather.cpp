@@ -54,6 +54,12 @@ SparseLight gather_indirect(const PatchSet& patches, const SparseLight& outgoing
                             std::span<const SurfaceSample> samples, std::span<const double> shown_direct,
                             const FinalGatherOptions& options, FinalGatherStats* stats) {
   const auto caster = make_ray_caster(options.caster, patches.triangles());
+  return gather_indirect(*caster, outgoing, samples, shown_direct, options, stats);
+}
+
+SparseLight gather_indirect(const RayCaster& caster, const SparseLight& outgoing,
+                            std::span<const SurfaceSample> samples, std::span<const double> shown_direct,
+                            const FinalGatherOptions& options, FinalGatherStats* stats) {
   std::uint32_t circuits = 0;
   for (std::size_t r = 0; r < outgoing.rows(); ++r)
     for (const CircuitLight& e : outgoing.row(r)) circuits = std::max(circuits, e.circuit + 1);
@@ -98,7 +104,7 @@ SparseLight gather_indirect(const PatchSet& patches, const SparseLight& outgoing
           const double u1 = ((k & 3) + rng.uniform()) * 0.25, u2 = ((k >> 2) + rng.uniform()) * 0.25;
           Ray ray{origin, cosine_direction(s.normal, u1, u2)};
           ray.tmin = self_hit_tmin(ray.dir);
-          const RayHit hit = caster->closest(ray);
+          const RayHit hit = caster.closest(ray);
           if (!hit.hit() || !hit.front) continue;  // out of the model, or the inside of a wall
           double seen = 0.0;                       // scalar: mean over channels, sum over circuits
           for (const CircuitLight& e : outgoing.row(hit.polygon)) {

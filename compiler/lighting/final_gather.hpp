@@ -14,6 +14,7 @@
 #include "compiler/lighting/direct_light.hpp"
 #include "compiler/radiosity/patch_set.hpp"
 #include "compiler/radiosity/sparse_light.hpp"
+#include "compiler/raycast/ray_caster.hpp"
 
 namespace walk::compiler {
 
@@ -56,6 +57,13 @@ void inset_from_edges(std::span<SurfaceSample> samples, std::span<const std::uin
 // surface's back (the inside of a wall) brings nothing. `shown_direct`: each sample's direct light as
 // shown (scalar, every circuit at full), which the target is relative to with the gathered light.
 [[nodiscard]] SparseLight gather_indirect(const PatchSet& patches, const SparseLight& outgoing,
+                                          std::span<const SurfaceSample> samples,
+                                          std::span<const double> shown_direct,
+                                          const FinalGatherOptions& options,
+                                          FinalGatherStats* stats = nullptr);
+// The same with the patches' caster built once by the caller (`patches.triangles()` in `options.caster`'s
+// kind), for several gathers over one solve.
+[[nodiscard]] SparseLight gather_indirect(const RayCaster& caster, const SparseLight& outgoing,
                                           std::span<const SurfaceSample> samples,
                                           std::span<const double> shown_direct,
                                           const FinalGatherOptions& options,

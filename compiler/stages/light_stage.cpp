@@ -23,6 +23,7 @@
 #include "compiler/lighting/interpolation_check.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
+#include "compiler/raycast/ray_caster.hpp"
 #include "compiler/scene/work_budget.hpp"
 #include "compiler/stages/stages.hpp"
 
@@ -168,8 +169,14 @@ class LightStage final : public Stage {
     FinalGatherStats gathered, checked;
     SparseLight indirect, check_indirect;
     if (final_gather) {
-      indirect = gather_indirect_at_vertices(s, emitters, r, vertex_direct, checks, check_direct, &gathered,
-                                             check_indirect, &checked);
+      // One caster over the solved patches serves the vertices and the interpolation checks.
+      const FinalGatherOptions o = final_gather_options(s);
+      const SparseLight outgoing = outgoing_light(emitters, r);
+      const auto caster = make_ray_caster(o.caster, s.patches.triangles());
+      indirect = gather_indirect_at_vertices(s, *caster, outgoing, vertex_direct, o, &gathered);
+      std::vector<double> check_shown(checks.points.size());
+      for (std::size_t k = 0; k < check_shown.size(); ++k) check_shown[k] = check_direct.scalar(k);
+      check_indirect = gather_indirect(*caster, outgoing, checks.points, check_shown, o, &checked);
       direct_note += fmt::format(
           "indirect gathered at vertices ({} rays, estimated {:.2f}%, {} at the cap, {:.0f}% of the light), ",
           gathered.rays, 100.0 * gathered.estimated_error, gathered.capped, 100.0 * gathered.gathered_share);
@@ -227,34 +234,37 @@ class LightStage final : public Stage {
     return outcome;
   }
 
-  // Indirect light at every lit vertex, gathered from the solved patches (each patch's radiosity less its
-  // own emission: panels' glow reaches the vertices as their gathered direct light).
-  // The same at the interpolation checks, given their direct light, into `check_light`.
-  static SparseLight gather_indirect_at_vertices(const CompileState& s, std::span<const AreaEmitter> emitters,
-                                                 const RadiosityResult& r, const SparseLight& vertex_direct,
-                                                 const InterpolationChecks& checks,
-                                                 const SparseLight& check_direct, FinalGatherStats* stats,
-                                                 SparseLight& check_light, FinalGatherStats* check_stats) {
+  // Each patch's radiosity less its own emission: what the final gather reads off the patches (panels' glow
+  // reaches the vertices as their gathered direct light).
+  static SparseLight outgoing_light(std::span<const AreaEmitter> emitters, const RadiosityResult& r) {
     SparseLight outgoing = r.radiosity;
     for (const AreaEmitter& e : emitters) {
       double* b = outgoing.at(e.patch, e.circuit);
       for (int c = 0; c < 3; ++c) b[c] = std::max(0.0, b[c] - e.exitance[c]);
     }
+    return outgoing;
+  }
+
+  static FinalGatherOptions final_gather_options(const CompileState& s) {
+    FinalGatherOptions o;
+    o.target_error = s.config.lighting.target_error.value_or(kDefaultGatherError);
+    o.threads = s.options.threads;
+    o.caster = s.config.lighting.ray_caster;
+    return o;
+  }
+
+  // Indirect light at every lit vertex, gathered from the solved patches through `caster` (over
+  // `s.patches.triangles()`).
+  static SparseLight gather_indirect_at_vertices(const CompileState& s, const RayCaster& caster,
+                                                 const SparseLight& outgoing,
+                                                 const SparseLight& vertex_direct,
+                                                 const FinalGatherOptions& o, FinalGatherStats* stats) {
     std::vector<double> shown_direct;
     shown_direct.reserve(s.samples.size());
     for (const std::uint32_t v : s.sample_vertex) shown_direct.push_back(vertex_direct.scalar(v));
     std::vector<SurfaceSample> receivers = s.samples;
     inset_from_edges(receivers, s.sample_vertex, s.patches.vertices, s.out.indices);
-    FinalGatherOptions o;
-    o.target_error = s.config.lighting.target_error.value_or(kDefaultGatherError);
-    o.threads = s.options.threads;
-    o.caster = s.config.lighting.ray_caster;
-    if (!checks.points.empty()) {
-      std::vector<double> check_shown(checks.points.size());
-      for (std::size_t k = 0; k < check_shown.size(); ++k) check_shown[k] = check_direct.scalar(k);
-      check_light = gather_indirect(s.patches, outgoing, checks.points, check_shown, o, check_stats);
-    }
-    return gather_indirect(s.patches, outgoing, receivers, shown_direct, o, stats);
+    return gather_indirect(caster, outgoing, receivers, shown_direct, o, stats);
   }
 
   // Direct light gathered at `samples` against the scene's shadow occluders (consumed: a compile gathers
