@@ -94,10 +94,10 @@ void print_worst(const std::string& what, const std::vector<compiler::SurfacePoi
     const auto i = order[j];
     const auto& p = points[i];
     std::fprintf(stderr,
-                 "  %s: point %zu at %.2f %.2f %.2f (local m) facing %.1f %.1f %.1f: reference %.3f, shown "
-                 "%.3f W/m2; %.1f%% of the squared error\n",
+                 "  %s: point %zu at %.2f %.2f %.2f (local m) facing %.1f %.1f %.1f: reference %.3f +- %.3f, "
+                 "shown %.3f W/m2; %.1f%% of the squared error\n",
                  what.c_str(), i, p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y,
-                 p.normal.z, model::luminance_weight(ref.radiosity[i]), values[i],
+                 p.normal.z, model::luminance_weight(ref.radiosity[i]), ref.standard_error[i], values[i],
                  100.0 * squared(i) / total);
   }
 }

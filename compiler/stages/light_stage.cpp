@@ -12,16 +12,17 @@
 #include <cstddef>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <span>
 
 #include "common/hash.hpp"
 #include "common/parallel_for.hpp"
-#include "compiler/geometry/triangle_weights.hpp"
 #include "compiler/lighting/direct_light.hpp"
 #include "compiler/lighting/final_gather.hpp"
 #include "compiler/lighting/interpolation_check.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
+#include "compiler/radiosity/refined_patches.hpp"
 #include "compiler/radiosity/vertex_light.hpp"
 #include "compiler/raycast/ray_caster.hpp"
 #include "compiler/scene/work_budget.hpp"
@@ -38,9 +39,6 @@ constexpr double kPilotRays = 2e5;
 constexpr double kTargetMargin = 1.2;
 // A solve whose estimate is within this factor of the target is kept; beyond it one more solve is run.
 constexpr double kTargetSlack = 1.15;
-// A refined vertex finds its patch by a ray from this far in front of it (metres): above the float
-// rounding of bundle vertices, below any gap between surfaces.
-constexpr double kLocateOffset = 1e-3;
 // The final gather's relative error where the scene gives no target: the shipped scenes' usual target.
 constexpr double kDefaultGatherError = 0.05;
 // The interpolation checks' draw of triangles: fixed, so a compile is repeatable.
@@ -133,10 +131,11 @@ class LightStage final : public Stage {
     ro.threads = s.options.threads;
     ro.caster = s.config.lighting.ray_caster;
     std::string how = fmt::format("{:g} rays/W", ro.rays_per_watt);
-    // Gathered direct light. On refined meshes: per vertex as the display shows it, per patch (its
-    // corners' mean) as the light the solver shoots on. Otherwise at each patch's centroid, shown like shot
-    // light (the area mean of the patches around a vertex): a vertex where a wall meets the floor, or
-    // just above a lamp's plane, is dark, and interpolating from it would darken the light around it.
+    // Gathered direct light. On refined meshes: per vertex as the display shows it, per patch (the area
+    // mean over the display's triangles on it) as the light the solver shoots on. Otherwise at each patch's
+    // centroid, shown like shot light (the area mean of the patches around a vertex): a vertex where a wall
+    // meets the floor, or just above a lamp's plane, is dark, and interpolating from it would darken the
+    // light around it.
     SparseLight vertex_direct, patch_direct;
     DirectLightStats direct_stats;
     std::string direct_note;
@@ -148,10 +147,13 @@ class LightStage final : public Stage {
       checks =
           pick_interpolation_checks(s.samples, s.sample_vertex, s.patches.vertices, s.out.indices,
                                     std::min(kInterpolationChecks, s.samples.size()), kInterpolationSeed);
+    // Refined display triangles find the patches they lie on through one locator.
+    std::unique_ptr<PatchLocator> locator;
+    if (s.patches_coarser_than_display) locator = std::make_unique<PatchLocator>(s.patches);
     if (s.config.lighting.gather_direct && (s.patches_coarser_than_display || final_gather)) {
       std::size_t from_refinement = 0;
       vertex_direct = gather_vertex_direct(s, &direct_stats, from_refinement, checks.points, &check_direct);
-      patch_direct = patch_means(s.patches, vertex_direct);
+      patch_direct = patch_means(s, locator.get(), vertex_direct);
       ro.gathered_direct = &patch_direct;
       direct_note =
           fmt::format("direct gathered at vertices ({} from the light refinement, {} shadow rays), ",
@@ -196,7 +198,7 @@ class LightStage final : public Stage {
         }
       } else {
         if (s.patches_coarser_than_display) {
-          const std::size_t lost = spread_to_refined_vertices(s, light);
+          const std::size_t lost = spread_to_refined_vertices(s, *locator, light);
           direct_note +=
               fmt::format("shot light spread to refined vertices ({} off patches: nearest corner), ", lost);
         }
@@ -314,24 +316,21 @@ class LightStage final : public Stage {
   }
 
   // Vertices the light refinement added are corners of no patch: they take the shot light interpolated
-  // over the patch they lie on, found by a short ray onto its front.
-  // Returns how many found no patch (they take their polygon's nearest corner's).
-  static std::size_t spread_to_refined_vertices(const CompileState& s, SparseLight& light) {
+  // over the patch they lie on. Returns how many found no patch (they take their polygon's nearest corner's).
+  static std::size_t spread_to_refined_vertices(const CompileState& s, const PatchLocator& locator,
+                                                SparseLight& light) {
     const PatchSet& set = s.patches;
     std::vector<std::uint8_t> corner(set.vertices.size(), 0);
     for (const Patch& p : set.patches)
       for (const std::uint32_t v : p.v) corner[v] = 1;
-    const TriangleBvh bvh(set.triangles());
     SparseLight filled(light);
     std::atomic<std::size_t> lost{0};
     parallel_ranges(set.vertices.size(), 1024, s.options.threads, [&](std::size_t first, std::size_t last) {
       for (std::size_t v = first; v < last; ++v) {
         if (corner[v]) continue;
         const auto& nv = s.out.vertices[v].normal;
-        const model::Vec3 n(nv[0], nv[1], nv[2]);
-        const auto hit = bvh.closest_facing(set.vertices[v] + n * kLocateOffset, -n, 0.0, 2.0 * kLocateOffset,
-                                            kLocateOffset * 1e-2);
-        if (!hit) {  // on a patch's edge, where the ray slipped between: the polygon's nearest corner
+        const auto at = locator.locate(set.vertices[v], model::Vec3(nv[0], nv[1], nv[2]));
+        if (!at) {  // on a patch's edge, where the ray slipped between: the polygon's nearest corner
           ++lost;
           const auto& poly = s.out.polygons[s.out.vertices[v].polygon];
           std::size_t nearest = v;
@@ -346,11 +345,9 @@ class LightStage final : public Stage {
           filled.set_row(v, light.row(nearest));
           continue;
         }
-        const Patch& p = set.patches[bvh.triangles()[hit->triangle].polygon];
-        const auto w = triangle_weights(set.vertices[p.v[0]], set.vertices[p.v[1]], set.vertices[p.v[2]],
-                                        set.vertices[v] + n * (kLocateOffset - hit->t));
+        const Patch& p = set.patches[at->patch];
         filled.clear_row(v);
-        for (int i = 0; i < 3; ++i) filled.add(v, light.row(p.v[i]), w[i]);
+        for (int i = 0; i < 3; ++i) filled.add(v, light.row(p.v[i]), at->weights[i]);
       }
     });
     light = std::move(filled);
@@ -373,10 +370,14 @@ class LightStage final : public Stage {
     return gather_direct(s, samples, patch_of, s.patches.patches.size(), stats);
   }
 
-  static SparseLight patch_means(const PatchSet& patches, const SparseLight& per_vertex) {
-    SparseLight out(patches.patches.size());
-    for (std::size_t p = 0; p < patches.patches.size(); ++p)
-      for (const std::uint32_t v : patches.patches[p].v) out.add(p, per_vertex.row(v), 1.0 / 3.0);
+  // The direct light each patch shoots: the mean of its corners where patches are the display's triangles,
+  // else the area mean over the refined triangles on it (refined_patches.hpp).
+  static SparseLight patch_means(const CompileState& s, const PatchLocator* locator,
+                                 const SparseLight& per_vertex) {
+    if (locator) return patch_area_means(s.patches, s.out.indices, per_vertex, *locator, s.options.threads);
+    SparseLight out(s.patches.patches.size());
+    for (std::size_t p = 0; p < s.patches.patches.size(); ++p)
+      for (const std::uint32_t v : s.patches.patches[p].v) out.add(p, per_vertex.row(v), 1.0 / 3.0);
     return out;
   }
 
