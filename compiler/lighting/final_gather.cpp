@@ -74,6 +74,7 @@ SparseLight gather_indirect(const RayCaster& caster, const SparseLight& outgoing
   SparseLight out(samples.size());
   std::vector<double> standard_error(samples.size(), 0.0), shown(samples.size(), 0.0),
       gathered(samples.size(), 0.0);
+  std::vector<std::uint8_t> hidden(samples.size(), 0);
   std::atomic<std::uint64_t> rays{0}, capped{0};
   parallel_ranges(samples.size(), 64, options.threads, [&](std::size_t first, std::size_t last) {
     std::vector<double> sum(std::size_t(circuits) * 3, 0.0);  // per circuit and channel, over all rays
@@ -89,7 +90,7 @@ SparseLight gather_indirect(const RayCaster& caster, const SparseLight& outgoing
       // whole batches' means, n - 1, reads zero where every batch happens to hit alike).
       std::array<double, kGatherBatchRays> stratum_sum{}, stratum_sum2{};
       double total = 0.0;
-      int n = 0;
+      int n = 0, backs = 0;
       bool met = false;
       // Irradiance is the mean radiosity seen (cosine-weighted rays): its error before the reflectance.
       auto standard_error_of_mean = [&] {
@@ -105,6 +106,7 @@ SparseLight gather_indirect(const RayCaster& caster, const SparseLight& outgoing
           Ray ray{origin, cosine_direction(s.normal, u1, u2)};
           ray.tmin = self_hit_tmin(ray.dir);
           const RayHit hit = caster.closest(ray);
+          backs += hit.hit() && !hit.front;
           if (!hit.hit() || !hit.front) continue;  // out of the model, or the inside of a wall
           double seen = 0.0;                       // scalar: mean over channels, sum over circuits
           for (const CircuitLight& e : outgoing.row(hit.polygon)) {
@@ -127,6 +129,7 @@ SparseLight gather_indirect(const RayCaster& caster, const SparseLight& outgoing
         }
       }
       capped += !met;
+      hidden[i] = 2 * backs > n * kGatherBatchRays;
       standard_error[i] = albedo * standard_error_of_mean();
       gathered[i] = albedo * total / (n * kGatherBatchRays);
       shown[i] = shown_direct[i] + gathered[i];
@@ -152,6 +155,7 @@ SparseLight gather_indirect(const RayCaster& caster, const SparseLight& outgoing
     stats->rays = rays.load();
     stats->capped = capped.load();
     stats->estimated_error = shown2 > 0.0 ? std::sqrt(se2 / shown2) : 0.0;
+    stats->hidden = std::move(hidden);
   }
   return out;
 }

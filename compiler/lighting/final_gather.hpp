@@ -35,6 +35,9 @@ struct FinalGatherStats {
   // RMS of the gathered light over the RMS of the shown light: the share of what is shown that carries the
   // patches' shooting noise (at most the solver's relative error, less where a receiver sees many patches).
   double gathered_share = 0.0;
+  // Per sample: most of its rays met a surface's back, so no view sees it (inside a solid, or a ceiling
+  // just behind a lamp's panel), as the path-traced reference judges its points.
+  std::vector<std::uint8_t> hidden;
 };
 
 // Rays per batch (a 4 x 4 jittered grid over the hemisphere) and the bounds on batches per receiver: the

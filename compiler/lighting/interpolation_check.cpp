@@ -39,25 +39,37 @@ InterpolationChecks pick_interpolation_checks(std::span<const SurfaceSample> sam
     const auto it = std::lower_bound(running.begin(), running.end(), u01(rng) * total);
     const std::size_t t = lit[std::min<std::size_t>(it - running.begin(), lit.size() - 1)];
     const std::array<std::uint32_t, 3> corners{indices[t], indices[t + 1], indices[t + 2]};
+    const double r = std::sqrt(u01(rng)), q = u01(rng);  // uniform over the triangle
+    const std::array<double, 3> w{1.0 - r, r * (1.0 - q), r * q};
     SurfaceSample p = samples[sample_of[corners[0]]];  // one polygon: one normal and reflectance
-    p.position = (vertices[corners[0]] + vertices[corners[1]] + vertices[corners[2]]) / 3.0;
+    p.position = vertices[corners[0]] * w[0] + vertices[corners[1]] * w[1] + vertices[corners[2]] * w[2];
     out.points.push_back(p);
     out.corners.push_back(corners);
+    out.weights.push_back(w);
   }
   return out;
 }
 
 double interpolation_error(const InterpolationChecks& checks, const SparseLight& shown,
-                           std::span<const double> truth, double noise) {
-  double difference = 0.0, light = 0.0;
-  for (std::size_t k = 0; k < checks.corners.size() && k < truth.size(); ++k) {
-    double mean = 0.0;
-    for (const std::uint32_t v : checks.corners[k]) mean += shown.scalar(v) / 3.0;
-    difference += (mean - truth[k]) * (mean - truth[k]);
+                           std::span<const double> truth, double noise,
+                           std::span<const std::uint8_t> hidden) {
+  double difference = 0.0, light = 0.0, squared_weights = 0.0;
+  std::size_t used = 0;
+  const std::size_t n = std::min(checks.corners.size(), truth.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k < hidden.size() && hidden[k]) continue;
+    double interpolated = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      interpolated += shown.scalar(checks.corners[k][i]) * checks.weights[k][i];
+      squared_weights += checks.weights[k][i] * checks.weights[k][i];
+    }
+    difference += (interpolated - truth[k]) * (interpolated - truth[k]);
     light += truth[k] * truth[k];
+    ++used;
   }
   if (!(light > 0.0)) return 0.0;
-  return std::sqrt(std::max(0.0, difference / light - (1.0 + 1.0 / 3.0) * noise * noise));
+  const double interpolated_noise = squared_weights / double(used);
+  return std::sqrt(std::max(0.0, difference / light - (1.0 + interpolated_noise) * noise * noise));
 }
 
 }  // namespace walk::compiler

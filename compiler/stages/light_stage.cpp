@@ -208,9 +208,11 @@ class LightStage final : public Stage {
         std::vector<double> truth(checks.points.size());
         for (std::size_t k = 0; k < truth.size(); ++k)
           truth[k] = check_direct.scalar(k) + check_indirect.scalar(k);
-        interpolation = interpolation_error(checks, light, truth, gathered.estimated_error);
-        direct_note += fmt::format("between vertices {:.2f}% at {} triangle centroids ({} rays), ",
-                                   100.0 * interpolation, checks.points.size(), checked.rays);
+        interpolation = interpolation_error(checks, light, truth, gathered.estimated_error, checked.hidden);
+        const auto hidden = std::count(checked.hidden.begin(), checked.hidden.end(), 1);
+        direct_note +=
+            fmt::format("between vertices {:.2f}% at {} points in triangles ({} hidden; {} rays), ",
+                        100.0 * interpolation, checks.points.size(), hidden, checked.rays);
       }
       out.light = light.to_rows();
     } else {

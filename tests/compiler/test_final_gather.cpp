@@ -1,7 +1,8 @@
 // The final gather (compiler/lighting/final_gather.hpp): a receiver inside a box of uniform radiosity
 // reflects exactly albedo x radiosity; one lit face gives the closed-form form factor; a dark receiver's
 // noise is judged against the room's light; rays that leave the model or meet a surface's back bring
-// nothing; receivers on a polygon's edge move into it, others stay.
+// nothing, and a receiver most of whose rays do is hidden; receivers on a polygon's edge move into it,
+// others stay.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -116,6 +117,21 @@ TEST(FinalGather, RaysOutOfTheModelOrOntoABackBringNothing) {
   ASSERT_EQ(light.row(1).size(), 1u);
   EXPECT_GT(light.row(1)[0].rgb[0], 0.0);
   EXPECT_LT(light.row(1)[0].rgb[0], 2.5);  // below albedo x B: part of its hemisphere sees nothing
+}
+
+TEST(FinalGather, AReceiverJustBehindASurfaceIsHidden) {
+  // 2 cm under the square's back (a ceiling above a lamp's panel), nearly every ray meets that back: no
+  // view sees the receiver. Inside the box every ray meets a front.
+  PatchSet set;
+  add_quad(set, {Vec3(0, 0, 1), Vec3(2, 0, 1), Vec3(2, 2, 1), Vec3(0, 2, 1)}, 0);
+  const std::vector<SurfaceSample> under{{Vec3(1, 1, 0.98), Vec3(0, 0, 1), model::Rgb(0.5)},
+                                         {Vec3(1, 1, 2), Vec3(0, 0, -1), model::Rgb(0.5)}};
+  FinalGatherStats stats;
+  (void)gather_indirect(set, outgoing(set, 5.0), under, std::vector{0.0, 0.0}, {}, &stats);
+  EXPECT_EQ(stats.hidden, (std::vector<std::uint8_t>{1, 0}));
+  const PatchSet room = box();
+  (void)gather_indirect(room, outgoing(room, 1.0), std::vector{kFloorCentre}, std::vector{0.0}, {}, &stats);
+  EXPECT_EQ(stats.hidden, (std::vector<std::uint8_t>{0}));
 }
 
 TEST(FinalGather, ReceiversOnAnEdgeMoveIntoTheirPolygonAndOthersStay) {
