@@ -21,5 +21,6 @@ void add_bench_rays_command(CLI::App& bench, int& exit_code);
 void add_bench_render_command(CLI::App& bench, int& exit_code);
 void add_bench_cells_command(CLI::App& bench, int& exit_code);
 void add_bench_lighting_command(CLI::App& bench, int& exit_code);
+void add_bench_image_command(CLI::App& bench, int& exit_code);
 
 }  // namespace walk::tools

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   walk::tools::add_bench_render_command(*bench, exit_code);
   walk::tools::add_bench_cells_command(*bench, exit_code);
   walk::tools::add_bench_lighting_command(*bench, exit_code);
+  walk::tools::add_bench_image_command(*bench, exit_code);
   app.parse_complete_callback([&] {
     spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::warn);
     walk::ProgressStyle style = walk::ProgressStyle::Auto;
