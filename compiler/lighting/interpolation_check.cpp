@@ -51,7 +51,7 @@ InterpolationChecks pick_interpolation_checks(std::span<const SurfaceSample> sam
 }
 
 double interpolation_error(const InterpolationChecks& checks, const SparseLight& shown,
-                           std::span<const double> truth, double noise,
+                           std::span<const double> truth, double truth_noise, double shown_noise,
                            std::span<const std::uint8_t> hidden) {
   double difference = 0.0, light = 0.0, squared_weights = 0.0;
   std::size_t used = 0;
@@ -69,7 +69,8 @@ double interpolation_error(const InterpolationChecks& checks, const SparseLight&
   }
   if (!(light > 0.0)) return 0.0;
   const double interpolated_noise = squared_weights / double(used);
-  return std::sqrt(std::max(0.0, difference / light - (1.0 + interpolated_noise) * noise * noise));
+  return std::sqrt(std::max(
+      0.0, difference / light - truth_noise * truth_noise - interpolated_noise * shown_noise * shown_noise));
 }
 
 }  // namespace walk::compiler

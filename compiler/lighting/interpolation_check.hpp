@@ -38,12 +38,13 @@ struct InterpolationChecks {
                                                             std::size_t count, std::uint64_t seed);
 
 // The RMS of (the corners' rows of `shown` interpolated at each point - `truth`) over the RMS of `truth`
-// (scalars, every circuit at full), with the noise of both taken out in quadrature: `noise` is the
-// relative RMS noise of one gathered value, which the truth carries once and the interpolation by the sum
-// of its squared weights. Points marked in `hidden` (if not empty) are left out: no view sees them, and
-// interpolating across them from lit corners is what a display does. 0 without checks or light.
+// (scalars, every circuit at full), with noise taken out in quadrature: `truth_noise` is the relative RMS
+// noise of one truth value, `shown_noise` that of one shown vertex, which the interpolation carries by the
+// sum of its squared weights (0 where the shown light's noise is error a view sees). Points marked in
+// `hidden` (if not empty) are left out: no view sees them, and interpolating across them from lit corners
+// is what a display does. 0 without checks or light.
 [[nodiscard]] double interpolation_error(const InterpolationChecks& checks, const SparseLight& shown,
-                                         std::span<const double> truth, double noise,
-                                         std::span<const std::uint8_t> hidden = {});
+                                         std::span<const double> truth, double truth_noise,
+                                         double shown_noise, std::span<const std::uint8_t> hidden = {});
 
 }  // namespace walk::compiler

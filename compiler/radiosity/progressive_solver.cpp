@@ -92,7 +92,12 @@ RadiosityResult solve_radiosity(const PatchSet& set, std::span<const AreaEmitter
   auto& stats = result.stats;
   if (circuits == 0 || P == 0) return result;
 
-  const auto caster = make_ray_caster(options.caster, set.triangles());
+  std::unique_ptr<RayCaster> own_caster;
+  const RayCaster* caster = options.built_caster;
+  if (!caster) {
+    own_caster = make_ray_caster(options.caster, set.triangles());
+    caster = own_caster.get();
+  }
 
   SparseLight unshot(P);
   std::vector<std::uint64_t> patch_hits(P, 0);

@@ -18,6 +18,7 @@
 #include "compiler/photometry/emission.hpp"
 #include "compiler/radiosity/patch_set.hpp"
 #include "compiler/radiosity/sparse_light.hpp"
+#include "compiler/raycast/ray_caster.hpp"
 
 namespace walk::compiler {
 
@@ -49,6 +50,9 @@ struct RadiosityOptions {
   std::uint64_t seed = 1;
   std::uint64_t max_rays = 2'000'000'000;  // safety stop
   std::string caster = "axial";            // ray caster by name (compiler/raycast/ray_caster.hpp)
+  // The patches' caster (`patches.triangles()` in `caster`'s kind) built by the caller, who solves more
+  // than once or gathers from the same patches afterwards; null: the solve builds its own.
+  const RayCaster* built_caster = nullptr;
   // Direct light already gathered at the receivers, as the radiosity it gives each patch (a row per patch,
   // W/m2, reflectance applied): when set, luminaires shoot nothing and only this reflected light and what it
   // reflects in turn is shot (Wallace, Elmquist & Haines 1989), so shooting noise is in the indirect light

@@ -140,13 +140,12 @@ class LightStage final : public Stage {
     DirectLightStats direct_stats;
     std::string direct_note;
     const bool final_gather = s.config.lighting.gather_direct && s.config.lighting.gather_indirect;
-    // With the final gather, the light between vertices is checked too (interpolation_check.hpp).
-    InterpolationChecks checks;
+    // The light between vertices is checked against light gathered at random points of the lit triangles,
+    // whichever way the light was made (interpolation_check.hpp).
+    const InterpolationChecks checks =
+        pick_interpolation_checks(s.samples, s.sample_vertex, s.patches.vertices, s.out.indices,
+                                  std::min(kInterpolationChecks, s.samples.size()), kInterpolationSeed);
     SparseLight check_direct;
-    if (final_gather)
-      checks =
-          pick_interpolation_checks(s.samples, s.sample_vertex, s.patches.vertices, s.out.indices,
-                                    std::min(kInterpolationChecks, s.samples.size()), kInterpolationSeed);
     // Refined display triangles find the patches they lie on through one locator.
     std::unique_ptr<PatchLocator> locator;
     if (s.patches_coarser_than_display) locator = std::make_unique<PatchLocator>(s.patches);
@@ -159,10 +158,16 @@ class LightStage final : public Stage {
           fmt::format("direct gathered at vertices ({} from the light refinement, {} shadow rays), ",
                       from_refinement, direct_stats.shadow_rays);
     } else if (s.config.lighting.gather_direct) {
-      patch_direct = gather_patch_direct(s, &direct_stats);
+      patch_direct = gather_patch_direct(s, &direct_stats, checks.points, &check_direct);
       ro.gathered_direct = &patch_direct;
       direct_note = fmt::format("direct gathered ({} shadow rays), ", direct_stats.shadow_rays);
+    } else {
+      (void)gather_direct(s, {}, {}, 0, nullptr, checks.points, &check_direct);
     }
+    // One caster over the patches serves every solve (a target's pilot and real solves), the final gather
+    // and the interpolation checks.
+    const auto caster = make_ray_caster(ro.caster, s.patches.triangles());
+    ro.built_caster = caster.get();
     RadiosityResult r =
         s.config.lighting.target_error
             ? solve_to_target(s, emitters, points, circuits, ro, *s.config.lighting.target_error, how)
@@ -170,24 +175,26 @@ class LightStage final : public Stage {
     out.polygon_light = polygon_radiosity(s.patches, r, out.polygons.size());
     FinalGatherStats gathered, checked;
     SparseLight indirect, check_indirect;
-    if (final_gather) {
-      // One caster over the solved patches serves the vertices and the interpolation checks.
+    if (!checks.points.empty() || final_gather) {
       const FinalGatherOptions o = final_gather_options(s);
       const SparseLight outgoing = outgoing_light(emitters, r);
-      const auto caster = make_ray_caster(o.caster, s.patches.triangles());
-      indirect = gather_indirect_at_vertices(s, *caster, outgoing, vertex_direct, o, &gathered);
+      if (final_gather) {
+        indirect = gather_indirect_at_vertices(s, *caster, outgoing, vertex_direct, o, &gathered);
+        direct_note += fmt::format(
+            "indirect gathered at vertices ({} rays, estimated {:.2f}%, {} at the cap, {:.0f}% of the "
+            "light), ",
+            gathered.rays, 100.0 * gathered.estimated_error, gathered.capped,
+            100.0 * gathered.gathered_share);
+      }
       std::vector<double> check_shown(checks.points.size());
       for (std::size_t k = 0; k < check_shown.size(); ++k) check_shown[k] = check_direct.scalar(k);
       check_indirect = gather_indirect(*caster, outgoing, checks.points, check_shown, o, &checked);
-      direct_note += fmt::format(
-          "indirect gathered at vertices ({} rays, estimated {:.2f}%, {} at the cap, {:.0f}% of the light), ",
-          gathered.rays, 100.0 * gathered.estimated_error, gathered.capped, 100.0 * gathered.gathered_share);
     }
-    double interpolation = 0.0;
+    SparseLight light;
     if (!vertex_direct.empty()) {
       // The display: the direct light as gathered at its vertex plus the patches' shot light around it.
       for (std::size_t i = 0; i < patch_direct.rows(); ++i) r.radiosity.add(i, patch_direct.row(i), -1.0);
-      SparseLight light = vertex_radiosity(s.patches, r);
+      light = vertex_radiosity(s.patches, r);
       if (final_gather) {
         // Every lit vertex shows what it gathered, so the shot light around it is not spread to it; the
         // panels (no samples) keep their patches' glow.
@@ -204,20 +211,31 @@ class LightStage final : public Stage {
         }
         for (std::size_t i = 0; i < vertex_direct.rows(); ++i) light.add(i, vertex_direct.row(i));
       }
-      if (final_gather) {
-        std::vector<double> truth(checks.points.size());
-        for (std::size_t k = 0; k < truth.size(); ++k)
-          truth[k] = check_direct.scalar(k) + check_indirect.scalar(k);
-        interpolation = interpolation_error(checks, light, truth, gathered.estimated_error, checked.hidden);
-        const auto hidden = std::count(checked.hidden.begin(), checked.hidden.end(), 1);
-        direct_note +=
-            fmt::format("between vertices {:.2f}% at {} points in triangles ({} hidden; {} rays), ",
-                        100.0 * interpolation, checks.points.size(), hidden, checked.rays);
-      }
-      out.light = light.to_rows();
     } else {
-      out.light = vertex_radiosity(s.patches, r).to_rows();
+      light = vertex_radiosity(s.patches, r);
     }
+    // What a view sees against the gathered truth: with the final gather both carry the gather's noise,
+    // which is taken out of both; otherwise the shown light's shooting noise is error a view sees, and only
+    // the truth's is taken out.
+    double interpolation = 0.0;
+    if (!checks.points.empty()) {
+      std::vector<double> truth(checks.points.size());
+      for (std::size_t k = 0; k < truth.size(); ++k)
+        truth[k] = check_direct.scalar(k) + check_indirect.scalar(k);
+      interpolation = interpolation_error(checks, light, truth, checked.estimated_error,
+                                          final_gather ? gathered.estimated_error : 0.0, checked.hidden);
+      const auto target = s.config.lighting.target_error;
+      if (target && interpolation > *target * kTargetSlack)
+        spdlog::warn(
+            "{}: the light between vertices is {:.1f}% off, above [lighting] target_error = {:g}: more rays "
+            "will not mend it; direct = \"gather\" with refine = true meshes where the light bends, and "
+            "indirect = \"gather\" reads it at every vertex (or set a finer grid)",
+            s.config.path, 100.0 * interpolation, *target);
+      const auto hidden = std::count(checked.hidden.begin(), checked.hidden.end(), 1);
+      direct_note += fmt::format("between vertices {:.2f}% at {} points in triangles ({} hidden; {} rays), ",
+                                 100.0 * interpolation, checks.points.size(), hidden, checked.rays);
+    }
+    out.light = light.to_rows();
     const auto& st = r.stats;
     auto outcome = StageOutcome::ran(
         s.patches.patches.size(), st.rays + gathered.rays + checked.rays,
@@ -229,12 +247,12 @@ class LightStage final : public Stage {
             st.escaped, st.emitted));
     // With a final gather the shown light's noise is the gather's and the patches' shooting noise in the
     // share of it that was gathered (an upper bound: a vertex averages it over every patch it sees), and
-    // its error between vertices is measured.
+    // its error between vertices is measured apart. Without it, the check measured the shooting noise too.
     outcome.estimated_error =
         final_gather
             ? std::hypot(std::hypot(gathered.estimated_error, gathered.gathered_share * st.estimated_error),
                          interpolation)
-            : st.estimated_error;
+            : std::max(st.estimated_error, interpolation);
     return outcome;
   }
 
@@ -357,7 +375,10 @@ class LightStage final : public Stage {
   }
 
   // Direct light at each patch's centroid (panels glow, so their rows stay empty), a row per patch.
-  static SparseLight gather_patch_direct(CompileState& s, DirectLightStats* stats) {
+  // With `extra_light`, also at `extra`, a row each.
+  static SparseLight gather_patch_direct(CompileState& s, DirectLightStats* stats,
+                                         std::span<const SurfaceSample> extra = {},
+                                         SparseLight* extra_light = nullptr) {
     std::vector<std::uint8_t> panel(s.out.polygons.size(), 0);
     for (const auto& [polygon, luminaire] : s.panel_polygons) panel[polygon] = 1;
     std::vector<SurfaceSample> samples;
@@ -369,7 +390,7 @@ class LightStage final : public Stage {
       samples.push_back({(v[p.v[0]] + v[p.v[1]] + v[p.v[2]]) / 3.0, p.normal, p.reflectance});
       patch_of.push_back(i);
     }
-    return gather_direct(s, samples, patch_of, s.patches.patches.size(), stats);
+    return gather_direct(s, samples, patch_of, s.patches.patches.size(), stats, extra, extra_light);
   }
 
   // The direct light each patch shoots: the mean of its corners where patches are the display's triangles,

@@ -171,10 +171,10 @@ void MeshStage::emit(CompileState& s, const model::Polygon& poly, std::uint32_t 
     out.coarse_indices.push_back(first_vertex + i);
   out.coarse_ranges.back().index_count =
       static_cast<std::uint32_t>(out.coarse_indices.size()) - out.coarse_ranges.back().first_index;
-  // Shadow-ray occluders for gathered direct light (radiosity shoots against its own patches), from the
-  // coarse triangulation: fewer triangles, same surface.
-  if (drawn(poly.role) &&
-      (s.config.lighting.method == LightingMethod::Direct || s.config.lighting.gather_direct)) {
+  // Shadow-ray occluders for gathered direct light and the light stage's checks between vertices
+  // (radiosity shoots against its own patches), from the coarse triangulation: fewer triangles, same
+  // surface.
+  if (drawn(poly.role)) {
     for (std::size_t i = 0; i + 2 < coarse.triangles.size(); i += 3)
       s.occluders.push_back({coarse.vertices[coarse.triangles[i]], coarse.vertices[coarse.triangles[i + 1]],
                              coarse.vertices[coarse.triangles[i + 2]], id});

@@ -61,25 +61,33 @@ TEST(InterpolationCheck, LinearLightIsExactAndABumpIsMeasured) {
     *shown.at(v, 0) = *(shown.at(v, 0) + 1) = *(shown.at(v, 0) + 2) = light_at(m.vertices[v]);
   std::vector<double> truth;
   for (const auto& p : checks.points) truth.push_back(light_at(p.position));
-  EXPECT_NEAR(interpolation_error(checks, shown, truth, 0.0), 0.0, 1e-12);
+  EXPECT_NEAR(interpolation_error(checks, shown, truth, 0.0, 0.0), 0.0, 1e-12);
   // A bump of a tenth at every point: 10 % relative at each check when the truth is that much darker.
   for (double& t : truth) t *= 1.0 / 1.1;
-  EXPECT_NEAR(interpolation_error(checks, shown, truth, 0.0), 0.1, 1e-9);
+  EXPECT_NEAR(interpolation_error(checks, shown, truth, 0.0, 0.0), 0.1, 1e-9);
   // Noise that explains the whole difference leaves nothing; none of it, everything.
-  EXPECT_EQ(interpolation_error(checks, shown, truth, 0.2), 0.0);
-  EXPECT_GT(interpolation_error(checks, shown, truth, 0.05), 0.0);
-  EXPECT_LT(interpolation_error(checks, shown, truth, 0.05), 0.1);
+  EXPECT_EQ(interpolation_error(checks, shown, truth, 0.2, 0.0), 0.0);
+  EXPECT_GT(interpolation_error(checks, shown, truth, 0.05, 0.0), 0.0);
+  EXPECT_LT(interpolation_error(checks, shown, truth, 0.05, 0.0), 0.1);
+  // The shown vertices' noise counts by the interpolation's squared weights (between 1/3 and 1), so it
+  // takes out less than the same noise in the truth.
+  const double truth_noisy = interpolation_error(checks, shown, truth, 0.06, 0.0);
+  const double shown_noisy = interpolation_error(checks, shown, truth, 0.0, 0.06);
+  EXPECT_LT(truth_noisy, shown_noisy);
+  EXPECT_LT(shown_noisy, interpolation_error(checks, shown, truth, 0.0, 0.0));
+  EXPECT_LT(shown_noisy, interpolation_error(checks, shown, truth, 0.06 / std::sqrt(3.0), 0.0) + 1e-12);
   // Points no view sees are left out: one far off among lit ones weighs nothing once hidden.
   std::vector<double> one_off(truth.size());
   std::vector<std::uint8_t> hidden(truth.size(), 0);
   for (std::size_t k = 0; k < truth.size(); ++k) one_off[k] = light_at(checks.points[k].position);
   one_off[17] = 0.0;
   hidden[17] = 1;
-  EXPECT_GT(interpolation_error(checks, shown, one_off, 0.0), 0.01);
-  EXPECT_NEAR(interpolation_error(checks, shown, one_off, 0.0, hidden), 0.0, 1e-12);
+  EXPECT_GT(interpolation_error(checks, shown, one_off, 0.0, 0.0), 0.01);
+  EXPECT_NEAR(interpolation_error(checks, shown, one_off, 0.0, 0.0, hidden), 0.0, 1e-12);
   // No light at all: nothing to be relative to.
-  EXPECT_EQ(interpolation_error(checks, SparseLight(m.vertices.size()), std::vector<double>(200, 0.0), 0.0),
-            0.0);
+  EXPECT_EQ(
+      interpolation_error(checks, SparseLight(m.vertices.size()), std::vector<double>(200, 0.0), 0.0, 0.0),
+      0.0);
 }
 
 }  // namespace test_interpolation_check
