@@ -50,7 +50,8 @@ struct Args {
   int reference_paths = 4096;  // per pixel, over its kSubpixels points
   std::string backend = "auto";
   unsigned threads = 2;
-  std::string frame;  // optional PNG of the rendered frame
+  std::string frame;      // optional PNG of the rendered frame
+  std::string error_map;  // optional PNG: each compared pixel's signed error, the rest the frame greyed
 };
 
 // A pixel's footprint is judged by a 3 x 3 grid of rays: all on one polygon, or it is a silhouette. Its
@@ -62,6 +63,21 @@ constexpr int kSubpixels = 2;
 constexpr double kBrightExposure = 16.0;
 // A rendered channel at this code is clipped (brighter than white): unreadable.
 constexpr std::uint8_t kClipped = 255;
+// The error map's full colour: this relative error, red too bright, blue too dark (white at 0).
+constexpr double kMapFullScale = 0.25;
+// The error map colours each compared pixel by its block's error (shown over reference summed over the
+// block's compared pixels): the reference's noise per pixel would hide a band a few pixels wide.
+constexpr int kMapBlock = 4;
+
+// A compared pixel's colour in the error map for relative error e (shown / reference - 1).
+void paint_error(render::Image& map, int x, int y, double e) {
+  const double t = std::clamp(std::abs(e) / kMapFullScale, 0.0, 1.0);
+  const auto fade = static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - t)));
+  std::uint8_t* p = &map.rgba[(std::size_t(y) * map.width + x) * 4];
+  p[0] = e > 0.0 ? 255 : fade;
+  p[1] = fade;
+  p[2] = e > 0.0 ? fade : 255;
+}
 
 enum class Seen : std::uint8_t { Surface, Nothing, Back, Lamp, Glass };
 
@@ -245,6 +261,10 @@ int run(const Args& a) {
   // what the scene leaves out) is taken off the shown pixel: the reference has none.
   double difference = 0.0, scale = 0.0, noise = 0.0, quantisation = 0.0, sum_shown = 0.0, sum_ref = 0.0;
   std::size_t compared = 0, clipped = 0;
+  const int blocks_x = (width + kMapBlock - 1) / kMapBlock;
+  std::vector<double> block_shown(std::size_t(blocks_x) * ((height + kMapBlock - 1) / kMapBlock), 0.0),
+      block_reference(block_shown.size(), 0.0);
+  std::vector<std::size_t> painted;  // the compared pixels
   for (std::size_t k = 0; k < eligible.size(); ++k) {
     const int x = int(eligible[k] % width), y = int(eligible[k] / width);
     double reference = 0.0, variance = 0.0;
@@ -267,6 +287,10 @@ int run(const Args& a) {
       continue;
     }
     const double light = *value - ambient;
+    const std::size_t block = std::size_t(y / kMapBlock) * blocks_x + x / kMapBlock;
+    block_shown[block] += light;
+    block_reference[block] += reference;
+    painted.push_back(eligible[k]);
     difference += (light - reference) * (light - reference);
     scale += reference * reference;
     noise += variance;
@@ -278,6 +302,18 @@ int run(const Args& a) {
     ++compared;
   }
   fs::remove_all(tmp);
+  if (!a.error_map.empty()) {
+    render::Image map = frame;  // the frame at a third of its brightness under the compared pixels' errors
+    for (std::size_t i = 0; i < map.rgba.size(); ++i)
+      if (i % 4 != 3) map.rgba[i] = static_cast<std::uint8_t>(map.rgba[i] / 3);
+    for (const std::size_t i : painted) {
+      const int x = int(i % width), y = int(i / width);
+      const std::size_t block = std::size_t(y / kMapBlock) * blocks_x + x / kMapBlock;
+      if (block_reference[block] > 0.0)
+        paint_error(map, x, y, block_shown[block] / block_reference[block] - 1.0);
+    }
+    render::write_png(a.error_map, map);
+  }
   if (!(scale > 0.0)) throw Error("walk bench image: the compared pixels are dark in the reference");
   std::printf(
       "view,width,height,aa_samples,pixels,surface,lamp,glass,nothing_or_back,silhouette,clipped,"
@@ -315,6 +351,10 @@ void add_bench_image_command(CLI::App& bench, int& exit_code) {
   cmd->add_option("--backend", args->backend, "auto, osmesa, egl, glfw or gbm");
   cmd->add_option("-j,--threads", args->threads, "Worker threads");
   cmd->add_option("--frame", args->frame, "Also write the rendered frame (PNG)");
+  cmd->add_option(
+      "--error-map", args->error_map,
+      "Also write the compared pixels' error by 4 x 4 blocks (PNG: red too bright, blue too dark, full at "
+      "25 %)");
   cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }
 
