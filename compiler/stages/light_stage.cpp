@@ -20,6 +20,7 @@
 #include "common/parallel_for.hpp"
 #include "compiler/lighting/direct_light.hpp"
 #include "compiler/lighting/final_gather.hpp"
+#include "compiler/lighting/hidden_vertices.hpp"
 #include "compiler/lighting/interpolation_check.hpp"
 #include "compiler/radiosity/progressive_solver.hpp"
 #include "compiler/radiosity/refined_patches.hpp"
@@ -203,6 +204,10 @@ class LightStage final : public Stage {
           light.set_row(v, vertex_direct.row(v));
           light.add(v, indirect.row(i));
         }
+        const std::size_t shown_as_neighbours =
+            show_hidden_as_neighbours(s.out.indices, s.sample_vertex, gathered.hidden, light);
+        direct_note +=
+            fmt::format("{} vertices no view sees shown as their neighbours, ", shown_as_neighbours);
       } else {
         if (s.patches_coarser_than_display) {
           const std::size_t lost = spread_to_refined_vertices(s, *locator, light);
