@@ -157,12 +157,9 @@ std::optional<double> shown(const render::Image& image, int x, int y, double exp
 }
 
 int run(const Args& a) {
-  int width = 0, height = 0;
-  char x_char = 0;
-  std::istringstream size(a.size);
-  if (!(size >> width >> x_char >> height) || x_char != 'x' || width <= 0 || height <= 0 || width > 8192 ||
-      height > 8192)
-    throw Error("walk bench image: --size '" + a.size + "' is not WIDTHxHEIGHT (e.g. 320x240)");
+  const auto size = parse_frame_size(a.size, 8192);
+  if (!size) throw Error("walk bench image: --size '" + a.size + "' is not WIDTHxHEIGHT (e.g. 320x240)");
+  const auto [width, height] = *size;
   std::string path = a.input;
   const fs::path tmp = fs::temp_directory_path() / ("walk_bench_image_" + std::to_string(::getpid()));
   if (fs::path(a.input).extension() != ".walk") {

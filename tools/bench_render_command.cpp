@@ -27,6 +27,7 @@
 #include "render/tonemap.hpp"
 #include "tools/commands.hpp"
 #include "tools/gnuplot.hpp"
+#include "tools/option_vectors.hpp"
 #include "tools/shading_count.hpp"
 
 namespace walk::tools {
@@ -644,11 +645,9 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
 }
 
 int run(const Options& o) {
-  int width = 0, height = 0;
-  char x = 0;
-  std::istringstream size(o.size);
-  if (!(size >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0)
-    throw Error("--size '" + o.size + "' is not WIDTHxHEIGHT");
+  const auto size = parse_frame_size(o.size);
+  if (!size) throw Error("--size '" + o.size + "' is not WIDTHxHEIGHT");
+  const auto [width, height] = *size;
   std::ostringstream csv;
   csv << "scene,triangles,walk_p50_ms,walk_p99_ms,governed_p50_ms,governed_p99_ms\n";
   for (std::size_t i = 0; i < o.inputs.size(); ++i) {

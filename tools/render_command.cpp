@@ -30,12 +30,9 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& args) {
-  int width = 0, height = 0;
-  char x = 0;
-  std::istringstream size(args.size);
-  if (!(size >> width >> x >> height) || x != 'x' || width <= 0 || height <= 0 || width > 16384 ||
-      height > 16384)
-    throw Error("--size '" + args.size + "' is not WIDTHxHEIGHT (e.g. 1280x720)");
+  const auto size = parse_frame_size(args.size, 16384);
+  if (!size) throw Error("--size '" + args.size + "' is not WIDTHxHEIGHT (e.g. 1280x720)");
+  const auto [width, height] = *size;
   auto bundle = model::Bundle::open(args.bundle);
   render::BackendOptions options;
   options.kind = render::parse_backend_kind(args.backend);
