@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/geometric.hpp>
 #include <limits>
 #include <numeric>
@@ -107,22 +108,150 @@ void lay_out_levels(const LayoutInput& in, const std::vector<std::uint32_t>& clu
   }
 }
 
-// Gives `form` vertices of its own, numbered by first use within each region (see LaidOutForm::vertices).
-void renumber_vertices(LaidOutForm& form, std::size_t vertex_count) {
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> local(vertex_count, kNone);  // VERT id -> this region's id
-  std::vector<std::uint32_t> region_of(vertex_count, kNone);
-  std::size_t region = 0;
-  for (std::size_t i = 0; i < form.indices.size(); ++i) {
-    while (region + 1 < form.regions.size() && i >= form.regions[region + 1]) ++region;
-    std::uint32_t& v = form.indices[i];
-    if (v >= vertex_count) continue;  // the bundle reader has checked; kept out of range here too
-    if (region_of[v] != region) {
-      region_of[v] = std::uint32_t(region);
-      local[v] = std::uint32_t(form.vertices.size());
-      form.vertices.push_back(v);
+// Per VERT id, a class shared by every vertex at bit-identical coordinates (kNoClass: unused by `form`):
+// the polygons of one mesh meet at such vertices, and only they may share a vertex without moving an edge.
+constexpr std::uint32_t kNoClass = std::numeric_limits<std::uint32_t>::max();
+constexpr int kSharedLookup = 16;  // vertices read at one point (share_vertices)
+struct PositionClasses {
+  std::vector<std::uint32_t> of;  // per VERT id
+  std::uint32_t count = 0;
+};
+PositionClasses position_classes(const LaidOutForm& form, std::span<const model::VertexRecord> vertices,
+                                 CoarseVertices how) {
+  std::vector<std::uint32_t> used;
+  {
+    std::vector<bool> seen(vertices.size(), false);
+    for (const std::uint32_t v : form.indices)
+      if (v < vertices.size() && !seen[v]) {
+        seen[v] = true;
+        used.push_back(v);
+      }
+  }
+  auto key = [&](std::uint32_t v) {
+    std::array<std::uint32_t, 3> k{};
+    std::memcpy(k.data(), vertices[v].position, sizeof(k));
+    return k;
+  };
+  const bool own = how == CoarseVertices::OwnPerPolygon;  // each VERT record a class of its own
+  if (!own)
+    std::sort(used.begin(), used.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  PositionClasses classes{std::vector<std::uint32_t>(vertices.size(), kNoClass), 0};
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    if (i > 0 && (own || key(used[i]) != key(used[i - 1]))) ++classes.count;
+    classes.of[used[i]] = classes.count;
+  }
+  if (!used.empty()) ++classes.count;
+  return classes;
+}
+
+// Gives `form` vertices of its own (see LaidOutForm::vertices), shared between a unit's polygons wherever
+// their corners coincide. The light of the coarse form is per polygon and flat, taken from each triangle's
+// provoking vertex (GL's default, the last), so each triangle is rotated (its winding kept) to end on a
+// vertex of its own polygon; the other two corners may be any polygon's.
+void share_vertices(LaidOutForm& form, std::span<const model::VertexRecord> vertices, CoarseVertices how) {
+  const PositionClasses classes = position_classes(form, vertices, how);
+  const std::vector<std::uint32_t>& class_of = classes.of;
+  // Vertices are shared within one unit's range: a range, or a run of ranges merged, then spans only
+  // its own dense run of vertices, which llvmpipe fetches and shades as one linear span (sharing over a
+  // whole region spans back to other units' vertices: M's coarse level 0.89x).
+  std::vector<std::uint32_t> starts(form.regions.begin(), form.regions.end());
+  for (const auto* ranges : {&form.opaque, &form.glass})
+    for (const IndexRange& r : *ranges) starts.push_back(r.first);
+  for (const auto& levels : form.lod)
+    for (const IndexRange& r : levels) starts.push_back(r.first);
+  std::sort(starts.begin(), starts.end());
+  starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+
+  // Per class, the newest vertex of this unit's range at it (valid while region_of matches); per vertex,
+  // the one before it at the same class, so a class's vertices in this range form a list, of which a lookup
+  // reads the newest kSharedLookup (a fan of many polygons round one point adds vertices rather than time). A
+  // vertex only some triangle's other corner is stays unclaimed, its polygon open: the first triangle that
+  // needs a provoking vertex there claims it (a closed mesh has half as many corners as triangles, so each
+  // must provoke for one).
+  constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> newest(classes.count, kNoVertex), region_of(classes.count, 0);
+  std::vector<std::uint32_t> previous;  // per form vertex
+  std::vector<bool> claimed;            // per form vertex
+  std::uint32_t region = 0;
+  std::size_t next_start = 0;
+  auto newest_at = [&](std::uint32_t k) { return region_of[k] == region ? newest[k] : kNoVertex; };
+  // A vertex at class `k` that can provoke for `polygon`: claimed by it, or else unclaimed.
+  auto provoking_at = [&](std::uint32_t k, std::uint32_t polygon) {
+    std::uint32_t open = kNoVertex;
+    int read = 0;
+    for (std::uint32_t v = newest_at(k); v != kNoVertex && read < kSharedLookup; v = previous[v], ++read) {
+      if (!claimed[v])
+        open = v;
+      else if (vertices[form.vertices[v]].polygon == polygon)
+        return v;
     }
-    v = local[v];
+    return open;
+  };
+  auto add = [&](std::uint32_t vert, std::uint32_t k, bool claim) {
+    const auto v = std::uint32_t(form.vertices.size());
+    form.vertices.push_back(vert);
+    previous.push_back(newest_at(k));
+    claimed.push_back(claim);
+    newest[k] = v;
+    region_of[k] = region;
+    return v;
+  };
+  // Per class, the corners of this range's triangles still to come there: a point few triangles meet is
+  // where one of them must claim its vertex, since no other can (a greedy choice without this count
+  // leaves such points unclaimed and adds vertices elsewhere).
+  std::vector<std::uint32_t> remaining(classes.count, 0);
+  auto valid = [&](std::size_t t) {
+    return form.indices[t] < vertices.size() && form.indices[t + 1] < vertices.size() &&
+           form.indices[t + 2] < vertices.size();  // the bundle reader has checked; kept here too
+  };
+  for (std::size_t t = 0; t + 2 < form.indices.size(); t += 3) {
+    if (next_start < starts.size() && starts[next_start] <= t) {
+      while (next_start < starts.size() && starts[next_start] <= t) ++next_start;
+      ++region;
+      const std::size_t end = next_start < starts.size() ? starts[next_start] : form.indices.size();
+      for (std::size_t u = t; u + 2 < end; u += 3)
+        if (valid(u))
+          for (std::size_t i = 0; i < 3; ++i) ++remaining[class_of[form.indices[u + i]]];
+    }
+    if (!valid(t)) continue;
+    const std::array<std::uint32_t, 3> corner{form.indices[t], form.indices[t + 1], form.indices[t + 2]};
+    const std::array<std::uint32_t, 3> k{class_of[corner[0]], class_of[corner[1]], class_of[corner[2]]};
+    for (const std::uint32_t c : k) --remaining[c];
+    // The provoking corner: one whose vertex already provokes for its polygon; else, of those where a
+    // vertex is unclaimed or none is yet (either costs no vertex more), the one fewest triangles still
+    // meet; else the first, at a new vertex of its own.
+    int provoking = -1;
+    std::uint32_t provoking_vertex = kNoVertex;
+    std::uint32_t fewest = std::numeric_limits<std::uint32_t>::max();
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t polygon = vertices[corner[i]].polygon;
+      const std::uint32_t v = provoking_at(k[i], polygon);
+      if (v != kNoVertex && claimed[v]) {  // its own: nothing to choose
+        provoking = i;
+        provoking_vertex = v;
+        break;
+      }
+      if ((v != kNoVertex || newest_at(k[i]) == kNoVertex) && remaining[k[i]] < fewest) {
+        fewest = remaining[k[i]];
+        provoking = i;
+        provoking_vertex = v;
+      }
+    }
+    if (provoking < 0) provoking = 0;
+    if (provoking_vertex == kNoVertex) {
+      provoking_vertex = add(corner[provoking], k[provoking], true);
+    } else {
+      form.vertices[provoking_vertex] = corner[provoking];  // same position; the polygon it provokes for
+      claimed[provoking_vertex] = true;
+    }
+    std::array<std::uint32_t, 3> shared{};
+    for (int i = 0; i < 3; ++i) {
+      if (i == provoking) continue;
+      const std::uint32_t v = newest_at(k[i]);
+      shared[i] = v != kNoVertex ? v : add(corner[i], k[i], false);
+    }
+    shared[provoking] = provoking_vertex;
+    for (int i = 0; i < 3; ++i) form.indices[t + i] = shared[(provoking + 1 + i) % 3];
   }
 }
 
@@ -134,7 +263,7 @@ LayoutInput layout_input(const model::Bundle& bundle) {
           bundle.cluster_polygons(), bundle.lod_ranges(),     bundle.lod_indices()};
 }
 
-ClusterLayout lay_out_clusters(const LayoutInput& in) {
+ClusterLayout lay_out_clusters(const LayoutInput& in, CoarseVertices coarse_vertices) {
   auto members = unit_members(in);
   // Draw order: by the first fine index of each unit's drawn polygons, so the compiler's order (polygons a
   // cell sees together, together) carries over; units with nothing drawn go last.
@@ -192,7 +321,7 @@ ClusterLayout lay_out_clusters(const LayoutInput& in) {
     cluster_of_unit[rank] = in.clusters.empty() ? std::uint32_t(in.clusters.size()) : order[rank];
   if (!layout.coarse.empty()) {
     lay_out_levels(in, cluster_of_unit, layout.coarse);
-    renumber_vertices(layout.coarse, in.vertices.size());
+    share_vertices(layout.coarse, in.vertices, coarse_vertices);
   }
   return layout;
 }

@@ -49,11 +49,14 @@ struct LaidOutForm {
   std::vector<std::array<float, model::kLodLevels>> lod_error;
   // Where each region of `indices` starts: opaque, glass, then each level.
   std::vector<std::uint32_t> regions;
-  // The coarse form's own vertices: the VERT id of each, numbered by first use within each region, so a
-  // range of indices refers to a dense run of vertices. A software vertex stage (llvmpipe's draw module)
-  // shades a draw's whole index span [min, max]: over VERT's numbering a simplified cluster's few
-  // triangles span every diced vertex of its polygons, and a merged range everything between. Empty for
-  // the fine form, whose light is fetched by gl_VertexID and so keeps VERT's numbering.
+  // The coarse form's own vertices: the VERT record each copies, numbered by first use within each unit's
+  // range. A software vertex stage (llvmpipe's draw module) fetches and shades a draw's index span [min,
+  // max] in one run when that is no longer than the draw: over VERT's numbering a simplified cluster's few
+  // triangles span every diced vertex of its polygons. The polygons of a unit share a vertex where their
+  // corners coincide (bit for bit), and each triangle ends on a vertex of its own polygon (its provoking
+  // vertex, which carries the flat polygon light): vertices of each polygon's own cost Sibenik, whose
+  // polygons are mostly one triangle, three a triangle. Empty for the fine form, whose light is fetched by
+  // gl_VertexID and so keeps VERT's numbering.
   std::vector<std::uint32_t> vertices;
   [[nodiscard]] bool empty() const { return indices.empty() && opaque.empty(); }
 };
@@ -78,7 +81,12 @@ struct ClusterLayout {
   [[nodiscard]] std::size_t units() const { return boxes.size(); }
 };
 
-[[nodiscard]] ClusterLayout lay_out_clusters(const LayoutInput& input);
+// How the coarse form's vertices are made (LaidOutForm::vertices): shared between the polygons of a unit
+// where their corners coincide (the renderer's), or each polygon's own, as VERT has them (its A/B).
+enum class CoarseVertices { Shared, OwnPerPolygon };
+
+[[nodiscard]] ClusterLayout lay_out_clusters(const LayoutInput& input,
+                                             CoarseVertices coarse_vertices = CoarseVertices::Shared);
 
 // The units of `pvs_ids` (bundle cluster ids, or polygon ids without CLUS), sorted, duplicates and
 // out-of-range ids dropped.

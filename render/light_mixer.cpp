@@ -26,7 +26,11 @@ uniform samplerBuffer u_compact_colour;  // RGBA8 per vertex
 uniform usamplerBuffer u_compact_code;   // compact entries: circuit << 8 | code
 uniform float u_ambient;
 uniform vec4 u_clip_plane;  // the map view cuts away what is above the viewer's storey (GL_CLIP_DISTANCE0)
+#ifdef WALK_FLAT_LIGHT
+flat out vec3 v_radiosity;  // the provoking vertex's (the coarse form ends each triangle on its polygon's)
+#else
 out vec3 v_radiosity;
+#endif
 
 const uint kNone = 0xffffffffu;
 const float kLastFull = 1048576.0;       // added to a vertex's last full entry's circuit
@@ -76,5 +80,10 @@ void main() {
 #endif
 }
 )glsl";
+
+std::string with_flat_light(const std::string& source) {
+  const std::size_t line_end = source.find('\n');
+  return source.substr(0, line_end + 1) + "#define WALK_FLAT_LIGHT 1\n" + source.substr(line_end + 1);
+}
 
 }  // namespace walk::render

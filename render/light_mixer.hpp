@@ -1,6 +1,8 @@
 #pragma once
 // The vertex stage: mixes each vertex's per-circuit radiosity by the dimmer levels, so a dimmer change costs
 // one uniform upload and no buffer traffic.
+#include <string>
+
 namespace walk::render {
 
 // Size of the u_levels uniform (vec4 x 128): 512 floats stay within GL 3.3's guaranteed 1024 vertex
@@ -15,5 +17,10 @@ inline constexpr int kMaxCircuits = 512;
 // u_polygon_light (RGBA32F) and u_polygon_first (R32UI, per polygon, indexed by a_polygon): PLGT's entries,
 // mixed by u_levels the same way; u_patch_weight blends the two linearly. Output: v_radiosity, linear W/m2.
 extern const char* const kLightMixerVertexShader;
+
+// `source` (this vertex shader or render/tonemap.hpp's fragment shader) with v_radiosity flat: each
+// triangle shows its provoking vertex's light, as the coarse form's shared vertices need
+// (render/cluster_layout.hpp).
+[[nodiscard]] std::string with_flat_light(const std::string& source);
 
 }  // namespace walk::render

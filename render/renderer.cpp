@@ -64,7 +64,67 @@ std::string scene_source(const model::Bundle& bundle, const std::string& source,
   return bundle.textures().empty() ? source : with_albedo_maps(source, vertex_stage);
 }
 
+// Points the bound VAO's attributes at `vbo`'s VERT records (position, albedo, polygon) and, unless 0,
+// at `light_ranges` (a_light_first, in VERT's numbering).
+void point_scene_attributes(GLuint vbo, GLuint light_ranges) {
+  glBindBuffer(GL_ARRAY_BUFFER, vbo);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
+                        reinterpret_cast<const void*>(offsetof(model::VertexRecord, position)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
+                        reinterpret_cast<const void*>(offsetof(model::VertexRecord, albedo)));
+  // The polygon id selects the coarse (per-polygon) light.
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(model::VertexRecord),
+                         reinterpret_cast<const void*>(offsetof(model::VertexRecord, polygon)));
+  if (light_ranges != 0) {
+    glBindBuffer(GL_ARRAY_BUFFER, light_ranges);
+    glEnableVertexAttribArray(3);
+    glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(VertexLightRange), nullptr);
+  }
+}
+
 }  // namespace
+
+// The coarse form's index buffer, its own vertices (copies of VERT records in its numbering, see
+// LaidOutForm::vertices) and the VAO over both. Its light is per polygon, so the shader reads no LGHT
+// ranges from them.
+struct CoarseBuffers {
+  GLuint vao = 0, vbo = 0, ibo = 0;
+  CoarseBuffers() = default;
+  CoarseBuffers(const LaidOutForm& form, std::span<const model::VertexRecord> vertices) {
+    glGenBuffers(1, &ibo);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, ibo);  // no VAO bound yet: a target that is not VAO state
+    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(form.indices.size() * sizeof(std::uint32_t)),
+                 form.indices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    std::vector<model::VertexRecord> copies;
+    copies.reserve(form.vertices.size());
+    for (const std::uint32_t v : form.vertices) copies.push_back(vertices[v]);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(copies.size() * sizeof(model::VertexRecord)), copies.data(),
+                 GL_STATIC_DRAW);
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    point_scene_attributes(vbo, 0);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);  // recorded in the VAO
+    glBindVertexArray(0);
+  }
+  CoarseBuffers(CoarseBuffers&& o) noexcept { *this = std::move(o); }
+  CoarseBuffers& operator=(CoarseBuffers&& o) noexcept {
+    std::swap(vao, o.vao);
+    std::swap(vbo, o.vbo);
+    std::swap(ibo, o.ibo);
+    return *this;
+  }
+  ~CoarseBuffers() {
+    glDeleteVertexArrays(1, &vao);
+    glDeleteBuffers(1, &vbo);
+    glDeleteBuffers(1, &ibo);
+  }
+};
 
 // A scene program and its uniforms' locations.
 struct ScenePass {
@@ -95,6 +155,9 @@ struct Renderer::Impl {
   // With albedo maps, the flat moving levels draw through a program without them: sampling maps costs
   // llvmpipe 7-15 ms a 1280x720 frame (Sibenik), more than any level saves. Empty without maps.
   std::optional<ScenePass> flat_pass;
+  // The coarse form's: flat light from each triangle's provoking vertex, over vertices shared between
+  // polygons (render/cluster_layout.hpp); never with maps. Empty without a coarse form.
+  std::optional<ScenePass> coarse_pass;
   ScenePass* pass = &full_pass;           // this frame's
   std::optional<AlbedoMaps> albedo_maps;  // only when the bundle has them
   // Subdivided quads carry their mixed radiosity per vertex: made on first use, like the accumulator.
@@ -106,10 +169,15 @@ struct Renderer::Impl {
   std::vector<IndexRange> shaded_runs;
   std::vector<GLint> shaded_firsts;
   std::vector<GLsizei> shaded_counts;
-  GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, coarse_vao = 0, coarse_vbo = 0,
-         coarse_ibo = 0, light_buffer = 0, light_texture = 0, polygon_buffer = 0, polygon_texture = 0,
-         polygon_first_buffer = 0, polygon_first_texture = 0, compact_colour_buffer = 0,
-         compact_colour_texture = 0, compact_code_buffer = 0, compact_code_texture = 0, light_range_vbo = 0;
+  // The coarse form with vertices shared between polygons, and (made on first use, for the A/B of
+  // set_shared_coarse_vertices) with vertices of each polygon's own.
+  CoarseBuffers coarse, own_coarse;
+  bool shared_coarse_vertices = true;
+  [[nodiscard]] GLuint coarse_vao() const { return shared_coarse_vertices ? coarse.vao : own_coarse.vao; }
+  GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, light_buffer = 0, light_texture = 0,
+         polygon_buffer = 0, polygon_texture = 0, polygon_first_buffer = 0, polygon_first_texture = 0,
+         compact_colour_buffer = 0, compact_colour_texture = 0, compact_code_buffer = 0,
+         compact_code_texture = 0, light_range_vbo = 0;
   DisplayLight display_light;
   std::vector<float> shader_levels;  // this frame's, as u_levels takes them (DisplayLight::shader_levels)
   // Both index forms laid out cluster by cluster (fine INDX; coarse CIDX, drawn with flat polygon light
@@ -213,9 +281,6 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &light_buffer);
     glDeleteBuffers(1, &ibo);
     glDeleteBuffers(1, &refined_ibo);
-    glDeleteBuffers(1, &coarse_ibo);
-    glDeleteBuffers(1, &coarse_vbo);
-    glDeleteVertexArrays(1, &coarse_vao);
     glDeleteBuffers(1, &shaded_vbo);
     glDeleteVertexArrays(1, &shaded_vao);
     glDeleteBuffers(1, &marker_vbo);
@@ -372,6 +437,7 @@ struct Renderer::Impl {
   // Draws the sub-quads of the units in `list`; returns their triangles.
   std::uint32_t draw_subdivided(const DrawList& list, const glm::mat4& view_projection);
   void make_shaded_program();
+  void use_pass(const ScenePass& pass, const glm::mat4& view_projection, float patch_weight);
 };
 
 namespace {
@@ -485,6 +551,9 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
   for (std::size_t c = 0; c < circuits; ++c)
     r.levels[c] = std::clamp(bundle.circuits()[c].default_level, 0.0f, 1.0f);
   r.layout = lay_out_clusters(layout_input(bundle));
+  if (!r.layout.coarse.empty())
+    r.coarse_pass.emplace("coarse scene", with_flat_light(kLightMixerVertexShader),
+                          with_flat_light(kTonemapFragmentShader));
   r.every_unit = all_units(r.layout);
   r.cell_units.resize(bundle.cells().size());
   if (!bundle.portals().empty())
@@ -505,22 +574,6 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
   glGenBuffers(1, &r.refined_ibo);
   glBindBuffer(GL_COPY_WRITE_BUFFER, r.refined_ibo);
   glBufferData(GL_COPY_WRITE_BUFFER, index_bytes, indices.data(), GL_DYNAMIC_DRAW);
-  const auto& coarse_indices = r.layout.coarse.indices;
-  if (!coarse_indices.empty()) {
-    glGenBuffers(1, &r.coarse_ibo);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, r.coarse_ibo);
-    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(coarse_indices.size() * sizeof(std::uint32_t)),
-                 coarse_indices.data(), GL_STATIC_DRAW);
-    // The coarse form's own vertices (see LaidOutForm::vertices): copies of VERT records in its numbering.
-    // Its light is per polygon, so the shader never reads LGHT by gl_VertexID from them.
-    std::vector<model::VertexRecord> coarse_vertices;
-    coarse_vertices.reserve(r.layout.coarse.vertices.size());
-    for (const std::uint32_t v : r.layout.coarse.vertices) coarse_vertices.push_back(vertices[v]);
-    glGenBuffers(1, &r.coarse_vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, r.coarse_vbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(coarse_vertices.size() * sizeof(model::VertexRecord)),
-                 coarse_vertices.data(), GL_STATIC_DRAW);
-  }
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
   // Where each vertex's light entries start (a_light_first), beside VERT in the same numbering.
   const auto& ranges = r.display_light.ranges();
@@ -528,32 +581,14 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
   glBindBuffer(GL_ARRAY_BUFFER, r.light_range_vbo);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(ranges.size() * sizeof(VertexLightRange)), ranges.data(),
                GL_STATIC_DRAW);
-  for (auto [vao, vbo, ibo] :
-       {std::tuple{&r.vao, r.vbo, r.ibo}, std::tuple{&r.refined_vao, r.vbo, r.refined_ibo},
-        std::tuple{&r.coarse_vao, r.coarse_vbo, r.coarse_ibo}}) {
-    if (ibo == 0) continue;
+  for (auto [vao, ibo] : {std::pair{&r.vao, r.ibo}, std::pair{&r.refined_vao, r.refined_ibo}}) {
     glGenVertexArrays(1, vao);
     glBindVertexArray(*vao);
-    glBindBuffer(GL_ARRAY_BUFFER, vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
-                          reinterpret_cast<const void*>(offsetof(model::VertexRecord, position)));
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(model::VertexRecord),
-                          reinterpret_cast<const void*>(offsetof(model::VertexRecord, albedo)));
-    // The polygon id selects the coarse (per-polygon) light.
-    glEnableVertexAttribArray(2);
-    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(model::VertexRecord),
-                           reinterpret_cast<const void*>(offsetof(model::VertexRecord, polygon)));
-    // The coarse form's own vertices read no per-vertex light (its light is per polygon): no ranges.
-    if (vbo == r.vbo) {
-      glBindBuffer(GL_ARRAY_BUFFER, r.light_range_vbo);
-      glEnableVertexAttribArray(3);
-      glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(VertexLightRange), nullptr);
-    }
+    point_scene_attributes(r.vbo, r.light_range_vbo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);  // recorded in the VAO
     glBindVertexArray(0);
   }
+  if (!r.layout.coarse.empty()) r.coarse = CoarseBuffers(r.layout.coarse, vertices);
 
   // Each vertex's light entries of the circuits shown full and of those shown compact, and the compact
   // form's colours; an empty buffer object still makes a valid texture.
@@ -646,6 +681,15 @@ void Renderer::set_nearest_first(bool enabled, std::uint32_t run_triangles) {
 
 void Renderer::set_detail_elision(bool enabled) {
   impl_->detail_elision = enabled;
+}
+
+void Renderer::set_shared_coarse_vertices(bool enabled) {
+  Impl& r = *impl_;
+  r.shared_coarse_vertices = enabled;
+  if (enabled || r.layout.coarse.empty() || r.own_coarse.vao != 0) return;
+  // The same ranges over the same triangles; only the vertices (and so each triangle's) differ.
+  r.own_coarse = CoarseBuffers(lay_out_clusters(layout_input(r.bundle), CoarseVertices::OwnPerPolygon).coarse,
+                               r.bundle.vertices());
 }
 
 void Renderer::set_frustum_culling(bool enabled) {
@@ -802,37 +846,13 @@ void Renderer::Impl::draw_scene(const View& view, int width, int height, const D
 
   std::uint32_t subdivided = 0;
   if (!list.opaque.empty() || !list.glass.empty()) {
-    const auto& meta = r.bundle.meta();
-    r.pass = r.flat_pass && options.patch_weight <= 0.0f ? &*r.flat_pass : &r.full_pass;
+    r.pass = coarse                                        ? &*r.coarse_pass
+             : r.flat_pass && options.patch_weight <= 0.0f ? &*r.flat_pass
+                                                           : &r.full_pass;
     const ScenePass& pass = *r.pass;
-    glUseProgram(pass.program.id());
-    glUniformMatrix4fv(pass.u_view_projection, 1, GL_FALSE, &view_projection_matrix[0][0]);
-    r.display_light.shader_levels(r.levels, r.shader_levels);
-    r.shader_levels.resize((r.shader_levels.size() + 3) / 4 * 4, 0.0f);  // whole vec4s
-    if (pass.u_levels >= 0 && !r.shader_levels.empty())
-      glUniform4fv(pass.u_levels, GLsizei(r.shader_levels.size() / 4), r.shader_levels.data());
-    glUniform1f(pass.u_ambient, meta.ambient);
-    glUniform1f(pass.u_inv_exposure, 1.0f / r.exposure());
-    glUniform1f(pass.u_patch_weight, std::clamp(options.patch_weight, 0.0f, 1.0f));
-    glUniform4f(pass.u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_BUFFER, r.light_texture);
-    glUniform1i(pass.u_light, 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, r.polygon_texture);
-    if (pass.u_polygon_light >= 0) glUniform1i(pass.u_polygon_light, 1);
-    glActiveTexture(GL_TEXTURE0 + kPolygonFirstUnit);
-    glBindTexture(GL_TEXTURE_BUFFER, r.polygon_first_texture);
-    if (pass.u_polygon_first >= 0) glUniform1i(pass.u_polygon_first, kPolygonFirstUnit);
-    glActiveTexture(GL_TEXTURE0 + kCompactColourUnit);
-    glBindTexture(GL_TEXTURE_BUFFER, r.compact_colour_texture);
-    if (pass.u_compact_colour >= 0) glUniform1i(pass.u_compact_colour, kCompactColourUnit);
-    glActiveTexture(GL_TEXTURE0 + kCompactCodeUnit);
-    glBindTexture(GL_TEXTURE_BUFFER, r.compact_code_texture);
-    if (pass.u_compact_code >= 0) glUniform1i(pass.u_compact_code, kCompactCodeUnit);
-    glActiveTexture(GL_TEXTURE0);
+    r.use_pass(pass, view_projection_matrix, options.patch_weight);
     if (r.albedo_maps && r.pass == &r.full_pass) r.albedo_maps->bind();
-    const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao : r.vao;
+    const GLuint scene_vao = options.diagonals ? r.refined_vao : coarse ? r.coarse_vao() : r.vao;
     glBindVertexArray(scene_vao);
     glUniform1f(pass.u_opacity, 1.0f);
     draw_batch(list.opaque);
@@ -955,6 +975,37 @@ void Renderer::Impl::draw_shaded(GLuint shaded_vao_id, std::span<const GLint> fi
   glUseProgram(pass->program.id());
 }
 
+// Binds `pass` with this frame's uniforms and the light textures.
+void Renderer::Impl::use_pass(const ScenePass& pass, const glm::mat4& view_projection, float patch_weight) {
+  const auto& meta = bundle.meta();
+  glUseProgram(pass.program.id());
+  glUniformMatrix4fv(pass.u_view_projection, 1, GL_FALSE, &view_projection[0][0]);
+  display_light.shader_levels(levels, shader_levels);
+  shader_levels.resize((shader_levels.size() + 3) / 4 * 4, 0.0f);  // whole vec4s
+  if (pass.u_levels >= 0 && !shader_levels.empty())
+    glUniform4fv(pass.u_levels, GLsizei(shader_levels.size() / 4), shader_levels.data());
+  glUniform1f(pass.u_ambient, meta.ambient);
+  glUniform1f(pass.u_inv_exposure, 1.0f / exposure());
+  glUniform1f(pass.u_patch_weight, std::clamp(patch_weight, 0.0f, 1.0f));
+  glUniform4f(pass.u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_BUFFER, light_texture);
+  glUniform1i(pass.u_light, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_BUFFER, polygon_texture);
+  if (pass.u_polygon_light >= 0) glUniform1i(pass.u_polygon_light, 1);
+  glActiveTexture(GL_TEXTURE0 + kPolygonFirstUnit);
+  glBindTexture(GL_TEXTURE_BUFFER, polygon_first_texture);
+  if (pass.u_polygon_first >= 0) glUniform1i(pass.u_polygon_first, kPolygonFirstUnit);
+  glActiveTexture(GL_TEXTURE0 + kCompactColourUnit);
+  glBindTexture(GL_TEXTURE_BUFFER, compact_colour_texture);
+  if (pass.u_compact_colour >= 0) glUniform1i(pass.u_compact_colour, kCompactColourUnit);
+  glActiveTexture(GL_TEXTURE0 + kCompactCodeUnit);
+  glBindTexture(GL_TEXTURE_BUFFER, compact_code_texture);
+  if (pass.u_compact_code >= 0) glUniform1i(pass.u_compact_code, kCompactCodeUnit);
+  glActiveTexture(GL_TEXTURE0);
+}
+
 // Called inside the scene pass (program, light textures and uniforms bound). Top-down orthographic view of
 // the model's bounds in a square at the top-right corner, cut at 0.5 m above the eye so upper storeys and
 // ceilings do not hide the floor plan; floors face up, so back-face culling keeps them.
@@ -978,13 +1029,17 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glEnable(GL_CLIP_DISTANCE0);
+  // Flat polygon light, a plan and not a picture: the coarse form where the bundle has one.
+  const bool coarse = !layout.coarse.empty();
+  if (coarse) {
+    pass = &*coarse_pass;
+    use_pass(*pass, plan, 0.0f);
+  }
   glUniformMatrix4fv(pass->u_view_projection, 1, GL_FALSE, &plan[0][0]);
   glUniform4f(pass->u_clip_plane, 0.0f, 0.0f, -1.0f, float(view.eye.z) + 0.5f);
-  glUniform1f(pass->u_patch_weight, 0.0f);  // flat polygon light: a plan, not a picture
+  glUniform1f(pass->u_patch_weight, 0.0f);
   glUniform1f(pass->u_opacity, 1.0f);
-  // Flat light: the coarse form where the bundle has one.
-  const bool coarse = !layout.coarse.empty();
-  glBindVertexArray(coarse ? coarse_vao : vao);
+  glBindVertexArray(coarse ? coarse_vao() : vao);
   draw_batch(list_for(FrameStats::kNoCell, coarse, nullptr).opaque);
   glDisable(GL_CLIP_DISTANCE0);
   glUniform4f(pass->u_clip_plane, 0.0f, 0.0f, 0.0f, 1.0f);

@@ -159,6 +159,10 @@ class Renderer {
   // it (cluster_layout.hpp too_small_to_draw), as a level of detail within the budget may move a surface
   // that far. Full-detail frames draw everything either way.
   void set_detail_elision(bool enabled);
+  // On by default: the coarse form's polygons share vertices where their corners coincide, each triangle
+  // ending on a vertex of its own polygon for its flat light (cluster_layout.hpp). Off: each polygon's
+  // vertices its own, as VERT has them (for the A/B in walk bench render). The same picture either way.
+  void set_shared_coarse_vertices(bool enabled);
   void draw(const View& view, int width, int height);
   void draw(const View& view, int width, int height, const DrawOptions& options);
 

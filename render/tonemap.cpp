@@ -21,7 +21,11 @@ vec3 srgb_encode(vec3 c) {
 )glsl";
 
 const std::string kTonemapFragmentShader = std::string(R"glsl(#version 330 core
+#ifdef WALK_FLAT_LIGHT
+flat in vec3 v_radiosity;
+#else
 in vec3 v_radiosity;
+#endif
 uniform float u_inv_exposure;
 uniform float u_opacity;
 out vec4 o_colour;

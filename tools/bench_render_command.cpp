@@ -552,6 +552,16 @@ Summary run_one(const Options& o, const std::string& input, int width, int heigh
               [&](bool on) { renderer.set_cpu_upscale(on); }, true, false, plain_note,
               {{"half-res", levels.front().options}});
     renderer.set_cpu_upscale(cpu_upscale);
+    // The coarse form's vertices shared between polygons, each triangle's flat light from a vertex of its
+    // own polygon (the kiosk's default), against each polygon's own vertices. Same pixels
+    // (SharedCoarseVerticesDrawTheSameFrame); the difference is the vertex work, which llvmpipe does on
+    // the thread that sets up the triangles.
+    if (!bundle->coarse_indices().empty())
+      alternate("vertices", "shared", "own", "speedup-shared", "own / shared",
+                [&](bool on) { renderer.set_shared_coarse_vertices(on); }, true, true, plain_note,
+                {{levels[0].name, levels[0].options},
+                 {levels[1].name, levels[1].options},
+                 {levels[2].name, levels[2].options}});
     {
       // The light as the compiler chose it per circuit (compact where within its limit) against every
       // circuit full: frame time, display memory and image error, alternating view by view.

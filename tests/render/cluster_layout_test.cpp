@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <numeric>
+#include <set>
 #include <vector>
 
 #include "model/model.hpp"
@@ -259,9 +263,12 @@ TEST(ClusterLayout, LevelsOfDetailArePickedByProjectedErrorAndDrawnFromDenseVert
   EXPECT_EQ(form.lod[1][0].first, form.lod[0][0].first + 3) << "one level's units side by side";
 
   // Each region's vertices are numbered by first use: cluster 0's level uses three of the four vertices
-  // of its first square, which come first in the level's own run after the coarse form's 16 vertices.
+  // of its first square, which come first in the level's own run after the coarse form's 16 vertices
+  // (rotated so the triangle ends on the vertex it was made from first).
   EXPECT_EQ(form.vertices.size(), 16u + 6u);
-  for (std::uint32_t i = 0; i < 3; ++i) EXPECT_EQ(form.indices[form.lod[0][0].first + i], 16u + i);
+  EXPECT_EQ(form.indices[form.lod[0][0].first], 17u);
+  EXPECT_EQ(form.indices[form.lod[0][0].first + 1], 18u);
+  EXPECT_EQ(form.indices[form.lod[0][0].first + 2], 16u);
   for (std::size_t v = 0; v < form.vertices.size(); ++v) EXPECT_LT(form.vertices[v], s.vertices.size());
 
   // 60 degrees over 600 pixels: 0.1 m spans 1 pixel at 0.1 * 600 / (pi / 3) = 57 m.
@@ -276,6 +283,93 @@ TEST(ClusterLayout, LevelsOfDetailArePickedByProjectedErrorAndDrawnFromDenseVert
   ASSERT_EQ(list.opaque.counts.size(), 1u) << "both clusters at one level meet";
   lod.max_pixels = 0.0f;
   EXPECT_EQ(cluster_draw_list(layout, form, all_units(layout), nullptr, &lod).triangles, 8u);
+}
+
+// A fan of single-triangle polygons round a grid point, as Sibenik's meshes are: the coarse form shares
+// their corners, keeps each triangle's corners and winding (a rotation of them), and ends each triangle on
+// a vertex of its own polygon, whose flat light it shows. A corner one float step away shares nothing.
+TEST(ClusterLayout, CoarsePolygonsShareCornersAndEachTriangleEndsOnItsOwnPolygon) {
+  // A 3 x 3 grid of points at z = 0, two triangles a square, each triangle a polygon; then one more
+  // triangle whose first corner is one float step off grid point 4.
+  std::vector<model::VertexRecord> vertices;
+  std::vector<model::PolygonRecord> polygons;
+  std::vector<std::uint32_t> indices;
+  auto point = [](float x, float y) {
+    model::VertexRecord v{};
+    v.position[0] = x, v.position[1] = y;
+    return v;
+  };
+  auto triangle = [&](model::VertexRecord a, model::VertexRecord b, model::VertexRecord c) {
+    model::PolygonRecord p{};
+    p.first_index = std::uint32_t(indices.size());
+    p.index_count = 3;
+    p.first_vertex = std::uint32_t(vertices.size());
+    p.vertex_count = 3;
+    p.role = std::uint32_t(R::Opaque);
+    for (model::VertexRecord v : {a, b, c}) {
+      v.polygon = std::uint32_t(polygons.size());
+      indices.push_back(std::uint32_t(vertices.size()));
+      vertices.push_back(v);
+    }
+    polygons.push_back(p);
+  };
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) {
+      const float fx = float(x), fy = float(y);
+      triangle(point(fx, fy), point(fx + 1, fy), point(fx + 1, fy + 1));
+      triangle(point(fx, fy), point(fx + 1, fy + 1), point(fx, fy + 1));
+    }
+  triangle(point(std::nextafter(1.0f, 2.0f), 1.0f), point(2.0f, 2.0f), point(1.0f, 2.0f));
+  std::vector<model::CoarseRangeRecord> coarse;
+  for (const auto& p : polygons) coarse.push_back({p.first_index, p.index_count});
+  // One cluster holds them all: vertices are shared within a unit's range.
+  std::vector<model::ClusterRecord> clusters(1);
+  clusters[0].polygon_count = std::uint32_t(polygons.size());
+  std::vector<std::uint32_t> members(polygons.size());
+  std::iota(members.begin(), members.end(), 0u);
+  const LayoutInput in{polygons, vertices, indices, coarse, indices, clusters, members, {}, {}};
+
+  auto position = [&](const LaidOutForm& form, std::uint32_t index) {
+    const float* p = vertices[form.vertices[form.indices[index]]].position;
+    return std::array<float, 3>{p[0], p[1], p[2]};
+  };
+  for (const CoarseVertices how : {CoarseVertices::Shared, CoarseVertices::OwnPerPolygon}) {
+    const LaidOutForm form = lay_out_clusters(in, how).coarse;
+    for (std::uint32_t p = 0; p < polygons.size(); ++p) {
+      const auto& laid = form.polygons[p];
+      ASSERT_EQ(laid.index_count, 3u);
+      // The laid-out corners are the source corners rotated by some r: same points, same winding.
+      bool rotation = false;
+      for (std::uint32_t r = 0; r < 3 && !rotation; ++r) {
+        rotation = true;
+        for (std::uint32_t i = 0; i < 3; ++i) {
+          const float* source = vertices[indices[polygons[p].first_index + (i + r) % 3]].position;
+          rotation = rotation && position(form, laid.first_index + i) ==
+                                     std::array<float, 3>{source[0], source[1], source[2]};
+        }
+      }
+      EXPECT_TRUE(rotation) << "polygon " << p;
+      EXPECT_EQ(vertices[form.vertices[form.indices[laid.first_index + 2]]].polygon, p)
+          << "the provoking (last) vertex carries its own polygon's light";
+    }
+    if (how == CoarseVertices::OwnPerPolygon) {
+      EXPECT_EQ(form.vertices.size(), 27u) << "three vertices a triangle";
+      continue;
+    }
+    // 9 triangles need 9 provoking vertices; the grid has 9 points, of which the last triangle, off by a
+    // float step, can share two; its off corner is a vertex of its own.
+    EXPECT_EQ(form.vertices.size(), 10u);
+    std::set<std::array<float, 3>> points;
+    for (std::uint32_t v : form.vertices) {
+      const float* p = vertices[v].position;
+      points.insert({p[0], p[1], p[2]});
+    }
+    EXPECT_EQ(points.size(), 10u) << "the off corner is not shared with grid point 4";
+  }
+  // Without the cluster each polygon is a unit of its own, and units share nothing: a unit's range spans
+  // only its own vertices.
+  const LayoutInput apart{polygons, vertices, indices, coarse, indices, {}, {}, {}, {}};
+  EXPECT_EQ(lay_out_clusters(apart).coarse.vertices.size(), 27u);
 }
 
 }  // namespace cluster_layout_test

@@ -2,7 +2,10 @@
 // tree whose PVS is conservative (each room leaves out only the other room's back-facing shared wall).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <vector>
 
 #include "render_test_support.hpp"
 #include "two_rooms.hpp"
@@ -115,6 +118,58 @@ TEST_P(PvsEquivalenceTest, NearestFirstFrameEqualsCompilerOrderFrame) {
       }
   EXPECT_EQ(views, 64);
   EXPECT_GT(reordered, 8) << "nearest first should split the compiler's merged ranges in many views";
+}
+
+// The coarse form's vertices shared between polygons (each triangle's flat light from a vertex of its own
+// polygon) draw what each polygon's own vertices draw, pixel for pixel: at the coarse level, at full and
+// half resolution, from every cell, with the dimmers away from their defaults.
+TEST_P(PvsEquivalenceTest, SharedCoarseVerticesDrawTheSameFrame) {
+  auto backend = headless(GetParam());
+  TwoRooms scene;
+  scene.four_cells = true;
+  scene.crate = true;
+  scene.subdivisions = 3;
+  scene.coarse_form = true;
+  // One cluster of every polygon, which every cell sees: vertices are shared within a cluster, so the
+  // walls' corners, where polygons of different light meet, share theirs.
+  model::BundleContents contents = make_two_rooms(scene);
+  model::ClusterRecord all{};
+  for (int a = 0; a < 3; ++a) {
+    all.bounds_min[a] = -100.0f;
+    all.bounds_max[a] = 100.0f;
+  }
+  all.polygon_count = std::uint32_t(contents.polygons.size());
+  contents.clusters = {all};
+  contents.cluster_polygons.resize(contents.polygons.size());
+  std::iota(contents.cluster_polygons.begin(), contents.cluster_polygons.end(), 0u);
+  contents.pvs = {0};
+  for (auto& cell : contents.cells) cell.pvs_first = 0, cell.pvs_count = 1;
+  auto bundle = open_bundle(std::move(contents), "shared_coarse_vertices");
+  ASSERT_FALSE(bundle->coarse_indices().empty());
+  Renderer shared(*bundle), own(*bundle);
+  own.set_shared_coarse_vertices(false);
+  std::vector<float> levels(bundle->circuits().size());
+  for (std::size_t c = 0; c < levels.size(); ++c) levels[c] = 0.3f + 0.5f * float(c % 2);
+  int views = 0, lit = 0;
+  for (Renderer* r : {&shared, &own}) r->set_dimmers(levels);
+  for (double x : {1.0, 3.0, 5.0, 7.0})
+    for (int turn = 0; turn < 8; ++turn)
+      for (const float resolution : {1.0f, 0.5f}) {
+        View view;
+        view.eye = {x, 1.5, 1.6};
+        const double a = turn * 0.785398163;
+        view.forward = {std::cos(a), std::sin(a), -0.2};
+        const DrawOptions options{.patch_weight = 0.0f, .resolution = resolution};
+        shared.draw(view, kWidth, kHeight, options);
+        own.draw(view, kWidth, kHeight, options);
+        const auto expected = own.read_pixels(kWidth, kHeight).rgba;
+        ASSERT_EQ(shared.read_pixels(kWidth, kHeight).rgba, expected)
+            << "eye " << x << " turn " << turn << " resolution " << resolution;
+        lit += std::any_of(expected.begin(), expected.end(), [](std::uint8_t c) { return c > 8; });
+        ++views;
+      }
+  EXPECT_EQ(views, 64);
+  EXPECT_EQ(lit, 64) << "every view shows lit walls";
 }
 
 // Occlusion culling leaves out clusters behind the walls nearest the eye, never a pixel: at full detail and
