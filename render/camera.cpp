@@ -19,7 +19,7 @@ constexpr double kRightAngleCosine = 0.01;
 // The eye must be at least this far in front of the screen plane (metres): at zero the frustum is infinite.
 constexpr double kMinEyeToScreen = 1e-3;
 
-glm::mat4 screen_projection(const View& view, const ScreenRect& s) {
+glm::dmat4 screen_projection(const View& view, const ScreenRect& s) {
   if (const std::string problem = screen_problem(s); !problem.empty()) throw Error("view: screen " + problem);
   // Kooima's generalized perspective projection: the screen's right, up and normal axes, the eye's distance
   // to its plane, and the frustum's extents on the near plane.
@@ -40,7 +40,7 @@ glm::mat4 screen_projection(const View& view, const ScreenRect& s) {
     axes[i][1] = up[i];
     axes[i][2] = normal[i];
   }
-  return glm::mat4(frustum * axes * glm::translate(glm::dmat4(1.0), -view.eye));
+  return frustum * axes * glm::translate(glm::dmat4(1.0), -view.eye);
 }
 
 }  // namespace
@@ -67,6 +67,10 @@ double vertical_field_of_view(const View& view) {
 }
 
 glm::mat4 view_projection(const View& view, double aspect) {
+  return glm::mat4(view_projection_double(view, aspect));
+}
+
+glm::dmat4 view_projection_double(const View& view, double aspect) {
   if (view.screen) {
     if (!(view.near_plane > 0.0) || !(view.far_plane > view.near_plane))
       throw Error("view: need 0 < near_plane < far_plane");
@@ -87,7 +91,7 @@ glm::mat4 view_projection(const View& view, double aspect) {
   const glm::dmat4 v = glm::lookAt(view.eye, view.eye + forward, up);
   const glm::dmat4 p =
       glm::perspective(glm::radians(view.fov_y_degrees), aspect, view.near_plane, view.far_plane);
-  return glm::mat4(p * v);
+  return p * v;
 }
 
 }  // namespace walk::render

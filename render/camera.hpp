@@ -11,6 +11,8 @@ namespace walk::render {
 // With view.screen: the off-axis frustum from the eye through the screen rectangle (aspect unused); throws
 // for a screen that is not a rectangle or an eye not in front of it.
 [[nodiscard]] glm::mat4 view_projection(const View& view, double aspect);
+// The same before it is handed to GL: the tools unproject pixels through its inverse.
+[[nodiscard]] glm::dmat4 view_projection_double(const View& view, double aspect);
 
 // Radians the image spans vertically: fov_y_degrees, or what the screen subtends from the eye.
 [[nodiscard]] double vertical_field_of_view(const View& view);

@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
+#include <glm/matrix.hpp>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -31,6 +31,7 @@
 #include "model/photometric_units.hpp"
 #include "model/srgb.hpp"
 #include "render/backend/backend.hpp"
+#include "render/camera.hpp"
 #include "render/renderer.hpp"
 #include "tools/commands.hpp"
 #include "tools/option_vectors.hpp"
@@ -89,24 +90,26 @@ struct PixelHit {
 
 class ViewRays {
  public:
-  ViewRays(const render::View& view, int width, int height) : eye_(view.eye), width_(width), height_(height) {
-    forward_ = glm::normalize(view.forward);
-    right_ = glm::normalize(glm::cross(forward_, view.up));
-    up_ = glm::cross(right_, forward_);
-    tan_half_ = std::tan(0.5 * glm::radians(view.fov_y_degrees));
-  }
-  // Direction through (x, y) in pixels from the top-left corner, as glm::perspective and lookAt project.
+  // Through the kiosk's own projection (render/camera.hpp), so the rays are the frame's, head-coupled
+  // screens included.
+  ViewRays(const render::View& view, int width, int height)
+      : eye_(view.eye),
+        width_(width),
+        height_(height),
+        unproject_(glm::inverse(render::view_projection_double(view, double(width) / double(height)))) {}
+  // Direction through (x, y) in pixels from the top-left corner: towards that pixel's point on the near
+  // plane.
   [[nodiscard]] model::Vec3 through(double x, double y) const {
-    const double aspect = double(width_) / double(height_);
-    const double ndc_x = 2.0 * x / width_ - 1.0, ndc_y = 1.0 - 2.0 * y / height_;
-    return glm::normalize(forward_ + right_ * (ndc_x * tan_half_ * aspect) + up_ * (ndc_y * tan_half_));
+    const glm::dvec4 near =
+        unproject_ * glm::dvec4(2.0 * x / width_ - 1.0, 1.0 - 2.0 * y / height_, -1.0, 1.0);
+    return glm::normalize(model::Vec3(near) / near.w - eye_);
   }
   [[nodiscard]] const model::Vec3& eye() const { return eye_; }
 
  private:
-  model::Vec3 eye_, forward_, right_, up_;
-  double tan_half_ = 0.0;
+  model::Vec3 eye_;
   int width_, height_;
+  glm::dmat4 unproject_;
 };
 
 struct Scene {
