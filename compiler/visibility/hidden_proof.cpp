@@ -140,6 +140,13 @@ struct HiddenProver::Search {
   ProofStats stats;
   bool visible = false;  // a sight line reached the target: stop
   bool spent = false;    // the budget ran out: stop
+  // Pieces waiting for a branch before them to be proven, each sure to take a pair of its own and each
+  // needed for the proof to end hidden: once the pairs taken and these no longer fit the allowance, it
+  // cannot (visible and undecided keep the item alike), so it stops there rather than at the allowance.
+  std::uint64_t pending = 0;
+  // Within a window's attempt (>0), whose failure falls back to splitting, a piece waiting is not needed
+  // for the proof to end hidden, so none is counted.
+  int trying_windows = 0;
   [[nodiscard]] bool stopped() const { return visible || spent; }
   // The verdict once the branches are done (`all`: every one proven hidden), counted into `out`.
   Verdict conclude(bool all, ProofStats* out) {
@@ -164,11 +171,9 @@ model::Vec3 centre_of(const Winding& w) {
 bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is_target, bool top, int depth,
                           Search& search) const {
   if (search.stopped()) return false;
-  if (dest.size() < 3 || source.points.empty()) return true;  // nothing (or no area) to see
-  if (dest_is_target &&
-      (!piece_meets_polygon(dest, search.target) || faces_away(source.points, search.target)))
-    return true;
-  if (++search.stats.pairs > static_cast<std::uint64_t>(search.options.max_pairs)) {
+  if (!takes_a_pair(source, dest, dest_is_target, search.target)) return true;  // nothing to see
+  const std::uint64_t waiting = search.options.stop_early ? search.pending : 0;
+  if (++search.stats.pairs + waiting > static_cast<std::uint64_t>(search.options.max_pairs)) {
     search.spent = true;
     return false;
   }
@@ -193,14 +198,16 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
     if (shaft.applies && !shaft.leaks.empty() &&
         shaft.leak_area <= search.options.window_fraction * shaft.section_area) {
       bool all = true;
+      ++search.trying_windows;
       for (const Winding& window : shaft.leaks) {
         if (hidden(source, window, false, false, depth + 1, search)) continue;
-        if (search.stopped()) return false;
+        if (search.stopped()) break;
         if (hidden({window, false}, dest, dest_is_target, false, depth + 1, search)) continue;
         all = false;
         break;
       }
-      if (all) return true;
+      --search.trying_windows;
+      if (all && !search.stopped()) return true;
       if (search.stopped()) return false;
     }
   }
@@ -222,12 +229,27 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
       a = {clip_front(source.points, cut), false};
       b = {clip_front(source.points, cut.flipped()), false};
     }
-    return hidden(a, dest, dest_is_target, top, depth + 1, search) &&
-           hidden(b, dest, dest_is_target, top, depth + 1, search);
+    return both_hidden(a, dest, b, dest, dest_is_target, top, depth + 1, search);
   }
   const Plane cut = axial_plane(da, 0.5 * (db.min[da] + db.max[da]), 1.0);
-  return hidden(source, clip_front(dest, cut), dest_is_target, top, depth + 1, search) &&
-         hidden(source, clip_front(dest, cut.flipped()), dest_is_target, top, depth + 1, search);
+  return both_hidden(source, clip_front(dest, cut), source, clip_front(dest, cut.flipped()), dest_is_target,
+                     top, depth + 1, search);
+}
+
+bool HiddenProver::takes_a_pair(const Piece& source, const Winding& dest, bool dest_is_target,
+                                std::uint32_t target) const {
+  if (dest.size() < 3 || source.points.empty()) return false;  // nothing (or no area) to see
+  return !dest_is_target || (piece_meets_polygon(dest, target) && !faces_away(source.points, target));
+}
+
+bool HiddenProver::both_hidden(const Piece& s1, const Winding& d1, const Piece& s2, const Winding& d2,
+                               bool dest_is_target, bool top, int depth, Search& search) const {
+  const std::uint64_t waits =
+      search.trying_windows == 0 && takes_a_pair(s2, d2, dest_is_target, search.target) ? 1 : 0;
+  search.pending += waits;
+  const bool first = hidden(s1, d1, dest_is_target, top, depth, search);
+  search.pending -= waits;
+  return first && hidden(s2, d2, dest_is_target, top, depth, search);
 }
 
 std::vector<Winding> HiddenProver::target_outlines(std::uint32_t target) const {
@@ -244,14 +266,28 @@ Verdict HiddenProver::prove(const Box& cell, std::span<const Exit> exits, std::u
   if (tp.box.overlaps(cell, kShaftSlack)) return prove_from_box(cell, target, options, stats);
   Search search{target, options, tp.detail, {}};
   bool all = (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0;
+  // Each outline through each exit, all needed hidden: those still to come wait (Search::pending).
+  struct Job {
+    Piece source;
+    Winding part;
+    bool takes_a_pair;
+  };
+  std::vector<Job> jobs;
   for (const Winding& outline : target_outlines(target))
     for (const Exit& e : exits) {
-      if (!all) break;
       // Only what lies beyond the portal is seen through it.
-      const Winding part = clip_front(outline, e.out);
-      if (part.size() >= 3 && e.hull.size() >= 3)
-        all = hidden({e.hull, false}, part, !tp.detail, true, 0, search);
+      Winding part = clip_front(outline, e.out);
+      if (part.size() < 3 || e.hull.size() < 3) continue;
+      Piece source{e.hull, false};
+      const bool pair = takes_a_pair(source, part, !tp.detail, target);
+      search.pending += pair;
+      jobs.push_back({std::move(source), std::move(part), pair});
     }
+  for (const Job& job : jobs) {
+    if (!all) break;
+    search.pending -= job.takes_a_pair;
+    all = hidden(job.source, job.part, !tp.detail, true, 0, search);
+  }
   return search.conclude(all, stats);
 }
 
@@ -260,9 +296,15 @@ Verdict HiddenProver::prove_from_box(const Box& viewer, std::uint32_t target, co
   const VisPolygon& tp = polygons_[target];
   Search search{target, options, tp.detail, {}};
   bool all = (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0;
-  for (const Winding& outline : target_outlines(target)) {
-    if (!all) break;
-    all = hidden({box_corners(inset(viewer)), true}, outline, !tp.detail, true, 0, search);
+  const Piece source{box_corners(inset(viewer)), true};
+  const std::vector<Winding> outlines = target_outlines(target);
+  // Every outline needed hidden: those still to come wait (Search::pending).
+  std::vector<char> pairs(outlines.size());
+  for (std::size_t i = 0; i < outlines.size(); ++i)
+    search.pending += pairs[i] = takes_a_pair(source, outlines[i], !tp.detail, target);
+  for (std::size_t i = 0; i < outlines.size() && all; ++i) {
+    search.pending -= pairs[i];
+    all = hidden(source, outlines[i], !tp.detail, true, 0, search);
   }
   return search.conclude(all, stats);
 }

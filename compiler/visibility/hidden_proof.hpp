@@ -31,6 +31,9 @@ struct ProofOptions {
   // A plane's open part is followed as a window only while it is at most this fraction of the section:
   // where most of the sight lines pass, splitting the pair narrows them faster. 0: no windows.
   double window_fraction = 0.5;
+  // Stop once the pairs taken and those the pieces still waiting will take exceed max_pairs: such a proof
+  // cannot end hidden. Off: it runs to max_pairs (the tests compare the two).
+  bool stop_early = true;
 };
 
 enum class Verdict { Hidden, Visible, Undecided };
@@ -100,6 +103,12 @@ class HiddenProver {
   // target proves it visible.
   [[nodiscard]] bool hidden(const Piece& source, const Winding& dest, bool dest_is_target, bool top,
                             int depth, Search& search) const;
+  // Will hidden(source, dest, dest_is_target, ...) take a pair, or settle the piece without one?
+  [[nodiscard]] bool takes_a_pair(const Piece& source, const Winding& dest, bool dest_is_target,
+                                  std::uint32_t target) const;
+  // Both pieces hidden, the second waiting (Search::pending) while the first is proven.
+  [[nodiscard]] bool both_hidden(const Piece& s1, const Winding& d1, const Piece& s2, const Winding& d2,
+                                 bool dest_is_target, bool top, int depth, Search& search) const;
   [[nodiscard]] bool piece_meets_polygon(const Winding& piece, std::uint32_t target) const;
   // Does the target (opaque, planar) face away from every point of the source piece?
   [[nodiscard]] bool faces_away(const Winding& source, std::uint32_t target) const;

@@ -266,6 +266,36 @@ TEST(HiddenProver, ADetailClusterIsProvenHiddenByItsBoxFaces) {
   EXPECT_LE(stats.pairs, 2u);
 }
 
+// Stopping once the pieces still waiting cannot fit the allowance never loses a hidden verdict: at every
+// allowance the proof with the early stop ends hidden exactly when the one run to its allowance does, and
+// never takes more pairs; an undecided one takes fewer. Through the corner (windows and splits), a
+// cluster's box faces (several outlines from one viewer) and splits alone (no windows).
+TEST(HiddenProver, StoppingEarlyNeverLosesAHiddenVerdict) {
+  const Corner walls = corner(0.0);
+  const Corner cluster = corner_with_cluster(0.0, {-1.5, 0.5, 0.5}, {-1.0, 1.5, 1.5});
+  int fewer = 0, hidden = 0;
+  for (const Corner* c : {&walls, &cluster}) {
+    const HiddenProver prover(c->polygons, *c->caster, true);
+    for (const double window_fraction : {0.5, 0.0})
+      for (int pairs = 1; pairs <= 300; ++pairs) {  // every allowance, the edge where hidden begins too
+        ProofOptions o;
+        o.max_pairs = pairs;
+        o.window_fraction = window_fraction;
+        ProofStats early, full;
+        const Verdict e = prover.prove_from_box(c->viewer, c->target, o, &early);
+        o.stop_early = false;
+        const Verdict f = prover.prove_from_box(c->viewer, c->target, o, &full);
+        ASSERT_EQ(e == Verdict::Hidden, f == Verdict::Hidden)
+            << pairs << " pairs, windows " << window_fraction;
+        EXPECT_LE(early.pairs, full.pairs) << pairs;
+        fewer += early.pairs < full.pairs;
+        hidden += e == Verdict::Hidden;
+      }
+  }
+  EXPECT_GT(hidden, 100) << "the allowances reach the hidden verdicts";
+  EXPECT_GT(fewer, 300) << "the early stop spares pairs";
+}
+
 TEST(ProofAllowance, FollowsTheTrianglesBetweenTheFloorAndTheCap) {
   EXPECT_EQ(proof_allowance(100, 50.0, false, 256, 32), 256) << "larger than the cell's mean item";
   EXPECT_EQ(proof_allowance(50, 50.0, false, 256, 32), 256) << "the mean item";
