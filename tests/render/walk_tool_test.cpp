@@ -127,6 +127,8 @@ TEST(WalkTool, BenchRenderWalksOnlyWhereAViewerCanStand) {
 TEST(WalkTool, BenchRenderPrintsEverySection) {
   test::TwoRooms scene;
   scene.four_cells = true;
+  scene.subdivisions = 2;
+  scene.coarse_form = true;  // so the coarse form's vertices are timed shared and own
   const auto bundle = test::open_two_rooms(scene, "bench_render");
   std::string output;
   ASSERT_EQ(
@@ -158,6 +160,9 @@ TEST(WalkTool, BenchRenderPrintsEverySection) {
                           "elision,speedup-elided-half-res,",
                           "upscale,blit-half-res,6,",
                           "upscale,speedup-cpu-upscale-half-res,",
+                          "vertices,shared-reduced-half-res,6,",
+                          "vertices,own-coarse,6,",
+                          "vertices,speedup-shared-simplified,",
                           "aa,1-samples,",
                           "aa,64-samples,"})
     EXPECT_NE(output.find(row), std::string::npos) << "missing '" << row << "' in:\n" << output;
