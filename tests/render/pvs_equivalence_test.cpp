@@ -25,6 +25,16 @@ std::unique_ptr<model::Bundle> open_four_cells(const std::string& name, bool cra
   return open_two_rooms(scene, name);
 }
 
+constexpr double kEighthTurn = 0.785398163;  // radians
+
+// A view from (x, y) at eye height, turned `heading` radians from +x and tilted by `down` (forward's z).
+View view_from(double x, double y, double heading, double down) {
+  View view;
+  view.eye = {x, y, 1.6};
+  view.forward = {std::cos(heading), std::sin(heading), down};
+  return view;
+}
+
 TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
   auto backend = headless(GetParam());
   auto bundle = open_four_cells("pvs_equivalence");
@@ -40,10 +50,7 @@ TEST_P(PvsEquivalenceTest, CulledFrameEqualsUnculledFrame) {
   for (double x : {1.0, 3.0, 5.0, 7.0})
     for (double y : {1.0, 3.0})
       for (int turn = 0; turn < 8; ++turn) {
-        View view;
-        view.eye = {x, y, 1.6};
-        const double a = turn * 0.785398163;
-        view.forward = {std::cos(a), std::sin(a), -0.1};
+        const View view = view_from(x, y, turn * kEighthTurn, -0.1);
         culled.draw(view, kWidth, kHeight);
         unculled.draw(view, kWidth, kHeight);
         const Image a_image = culled.read_pixels(kWidth, kHeight);
@@ -72,10 +79,8 @@ TEST_P(PvsEquivalenceTest, FrustumCulledFrameEqualsUnculledFrame) {
   int fewer = 0;
   for (double x : {1.0, 3.0, 5.0, 7.0})
     for (int turn = 0; turn < 8; ++turn) {
-      View view;
-      view.eye = {x, 1.5, 1.6};
-      const double a = turn * 0.785398163;
-      view.forward = {std::cos(a), std::sin(a), 0.2 * std::sin(3 * a)};
+      const double a = turn * kEighthTurn;
+      const View view = view_from(x, 1.5, a, 0.2 * std::sin(3 * a));
       culled.draw(view, kWidth, kHeight);
       unculled.draw(view, kWidth, kHeight);
       ASSERT_EQ(culled.read_pixels(kWidth, kHeight).rgba, unculled.read_pixels(kWidth, kHeight).rgba)
@@ -99,10 +104,7 @@ TEST_P(PvsEquivalenceTest, NearestFirstFrameEqualsCompilerOrderFrame) {
   for (double x : {1.0, 3.0, 5.0, 7.0})
     for (int turn = 0; turn < 8; ++turn)
       for (const float patch_weight : {1.0f, 0.0f}) {
-        View view;
-        view.eye = {x, 1.5, 1.6};
-        const double a = turn * 0.785398163;
-        view.forward = {std::cos(a), std::sin(a), -0.2};
+        const View view = view_from(x, 1.5, turn * kEighthTurn, -0.2);
         const DrawOptions options{.patch_weight = patch_weight};
         nearest.draw(view, kWidth, kHeight, options);
         in_runs.draw(view, kWidth, kHeight, options);
@@ -155,10 +157,7 @@ TEST_P(PvsEquivalenceTest, SharedCoarseVerticesDrawTheSameFrame) {
   for (double x : {1.0, 3.0, 5.0, 7.0})
     for (int turn = 0; turn < 8; ++turn)
       for (const float resolution : {1.0f, 0.5f}) {
-        View view;
-        view.eye = {x, 1.5, 1.6};
-        const double a = turn * 0.785398163;
-        view.forward = {std::cos(a), std::sin(a), -0.2};
+        const View view = view_from(x, 1.5, turn * kEighthTurn, -0.2);
         const DrawOptions options{.patch_weight = 0.0f, .resolution = resolution};
         shared.draw(view, kWidth, kHeight, options);
         own.draw(view, kWidth, kHeight, options);
@@ -190,10 +189,7 @@ TEST_P(PvsEquivalenceTest, OcclusionCulledFrameEqualsUnculledFrame) {
     for (double y : {0.5, 1.0, 3.0, 3.5})
       for (int turn = -2; turn <= 2; ++turn)
         for (const float patch_weight : {1.0f, 0.0f}) {
-          View view;
-          view.eye = {x, y, 1.6};
-          const double a = turn * 0.5;
-          view.forward = {std::cos(a), std::sin(a), -0.2};
+          const View view = view_from(x, y, turn * 0.5, -0.2);
           const DrawOptions options{.patch_weight = patch_weight, .jitter_x = 0.37f * float(turn & 1)};
           occluded.draw(view, kWidth, kHeight, options);
           unoccluded.draw(view, kWidth, kHeight, options);
