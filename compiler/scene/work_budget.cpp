@@ -30,8 +30,9 @@ void check_patch_budget(const model::Model& model, const SceneConfig& config, st
   if (memory_bytes == 0) return;  // the machine would not say: nothing to bound by
   const double patches = estimated_patches(model, config.lighting.grid);
   const double bytes =
-      patches *
-      (kBytesPerPatch + kBytesPerPatchCircuit * double(std::max<std::size_t>(1, model.circuits.size())));
+      patches * (kBytesPerPatch +
+                 kBytesPerPatchCircuit * std::min(kCircuitsReachingAPatch,
+                                                  double(std::max<std::size_t>(1, model.circuits.size()))));
   const double limit = kMemoryShare * double(memory_bytes);
   if (bytes > limit)
     throw Error(located(

@@ -17,9 +17,13 @@ inline constexpr double kMaxFirstRoundRays = 2e9;
 
 // Memory per lighting patch, all stages together: 2 KiB measured as the compile's peak resident size over
 // its patches (Sibenik at grid 2 m: 227 MB for 105,452 patches, one circuit), plus the per-circuit light of
-// about 2.4 vertices a patch in float and the solver's per-patch doubles.
+// about 2.4 vertices a patch in float and the solver's per-patch doubles, for each circuit that reaches the
+// patch: light is sparse (compiler/radiosity/sparse_light.hpp), and a room is lit by its own circuits and a
+// few of its neighbours'. Up to kCircuitsReachingAPatch circuits are counted: the generated M building with
+// its 170 circuits holds 2.8 a vertex (its compile 2.95 GB at peak, where counting all 170 estimated 18 GB).
 inline constexpr double kBytesPerPatch = 2048.0;
 inline constexpr double kBytesPerPatchCircuit = 96.0;
+inline constexpr double kCircuitsReachingAPatch = 8.0;
 // Share of the machine's physical memory a compile may plan to use.
 inline constexpr double kMemoryShare = 0.8;
 

@@ -156,6 +156,16 @@ TEST_F(HardCompile, WorkMultipliersAreRefusedBeforeTheWork) {
   EXPECT_NE(patches.find("[lighting] grid = 0.01"), std::string::npos) << patches;
   EXPECT_NE(patches.find("raise grid to at least"), std::string::npos) << patches;
   EXPECT_NO_THROW(check_patch_budget(room, config, 64ull << 20));
+  // Light is sparse, so a building of many circuits is not charged for each at every patch: 12,800 patches
+  // (grid 5 cm) with 1,000 circuits fit a 128 MiB machine (charged all, they would need 1.2 GB), and
+  // 80,000 (2 cm) do not.
+  room.circuits.resize(1000);
+  SceneConfig many = config;
+  many.lighting.grid = 0.05;
+  EXPECT_NO_THROW(check_patch_budget(room, many, 128ull << 20));
+  many.lighting.grid = 0.02;
+  EXPECT_NE(error_of([&] { check_patch_budget(room, many, 128ull << 20); }).find("[lighting] grid = 0.02"),
+            std::string::npos);
   // The sampled PVS's rays, once the cells are known and before any is cast.
   SceneConfig sampled = config;
   sampled.visibility.sample_points = 1'000'000;
