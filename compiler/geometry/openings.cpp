@@ -1,9 +1,12 @@
 #include "compiler/geometry/openings.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <glm/geometric.hpp>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -52,6 +55,47 @@ struct Host {
   std::vector<std::size_t> cutters;  // indices into the cutter list, once assigned
 };
 
+// Cutters by the cells of a uniform grid their boxes (grown by their depth) overlap, so a face finds the
+// cutters it may host without a look at every one: the generated L building has 4,000 cutters and 5 M faces.
+class CutterGrid {
+ public:
+  void add(std::uint32_t cutter, const model::Bounds& grown) {
+    for_cells(grown, [&](std::uint64_t key) { cells_[key].push_back(cutter); });
+  }
+  // f(cutter) for each cutter in a cell `box` overlaps; a cutter may come more than once.
+  template <class F>
+  void for_each_near(const model::Bounds& box, F&& f) const {
+    for_cells(box, [&](std::uint64_t key) {
+      if (const auto it = cells_.find(key); it != cells_.end())
+        for (const std::uint32_t k : it->second) f(k);
+    });
+  }
+
+ private:
+  // A door's size: a wall or floor spans a few hundred cells, a furniture triangle one to eight.
+  static constexpr double kCellMetres = 2.0;
+  // Cell coordinates are clamped to 21 bits a side (+-2,000 km at 2 m), packed into one key.
+  static constexpr std::int64_t kCellRange = 1 << 20;
+  static std::int64_t cell_of(double x) {
+    if (std::isnan(x)) return 0;  // the cleanup stage drops such faces; kept out of the cast here
+    return std::clamp<std::int64_t>(std::int64_t(std::floor(x / kCellMetres)), -kCellRange, kCellRange - 1);
+  }
+  template <class F>
+  static void for_cells(const model::Bounds& box, F&& f) {
+    std::array<std::int64_t, 3> lo{}, hi{};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = cell_of(box.min[a]);
+      hi[a] = cell_of(box.max[a]);
+    }
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          f(std::uint64_t(x + kCellRange) << 42 | std::uint64_t(y + kCellRange) << 21 |
+            std::uint64_t(z + kCellRange));
+  }
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
 // How a cutter sits on a host: its distance from the host's plane, or nothing when it is not parallel to it,
 // too far from it, or does not overlap it.
 std::optional<double> placement(Host& host, const model::Polygon& cutter, double tolerance, double depth) {
@@ -88,31 +132,57 @@ OpeningStats cut_openings(model::Model& model, double tolerance) {
   for (std::size_t i = 0; i < model.polygons.size(); ++i) {
     if (is_cutter(model.polygons[i].role)) cutters.push_back(i);
   }
-  std::vector<Host> hosts;
-  if (!cutters.empty()) {
-    for (std::size_t h = 0; h < model.polygons.size(); ++h) {
-      const model::Polygon& polygon = model.polygons[h];
-      PlaneFrame frame;
-      if (polygon.role != model::Role::Opaque || !plane_frame(polygon.vertices, frame)) continue;
-      Host host{h, frame, PointMap(frame), {}, bounds_of(polygon), {}};
-      host.paths.push_back(host.points.to_path(polygon.vertices));
-      for (const auto& hole : polygon.holes) host.paths.push_back(host.points.to_path(hole));
-      hosts.push_back(std::move(host));
+  // Hosts: the opaque faces whose box touches a cutter's (grown by its depth), each with the cutters it
+  // touches as (cutter, host) pairs, hosts in face order.
+  const auto depth_of = [&](std::size_t k) {
+    return model.polygons[cutters[k]].role == model::Role::Glass ? std::max(tolerance, kGlassInsetDepth)
+                                                                 : tolerance;
+  };
+  std::vector<model::Bounds> cutter_boxes(cutters.size());
+  CutterGrid grid;
+  for (std::size_t k = 0; k < cutters.size(); ++k) {
+    cutter_boxes[k] = bounds_of(model.polygons[cutters[k]]);
+    model::Bounds grown = cutter_boxes[k];
+    for (int a = 0; a < 3; ++a) {
+      grown.min[a] -= depth_of(k);
+      grown.max[a] += depth_of(k);
     }
+    grid.add(std::uint32_t(k), grown);
   }
+  std::vector<Host> hosts;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (cutter, host)
+  std::vector<std::uint32_t> near;
+  for (std::size_t h = 0; h < model.polygons.size() && !cutters.empty(); ++h) {
+    const model::Polygon& polygon = model.polygons[h];
+    if (polygon.role != model::Role::Opaque) continue;
+    const model::Bounds box = bounds_of(polygon);
+    near.clear();
+    grid.for_each_near(box, [&](std::uint32_t k) {
+      if (boxes_touch(box, cutter_boxes[k], depth_of(k))) near.push_back(k);
+    });
+    PlaneFrame frame;
+    if (near.empty() || !plane_frame(polygon.vertices, frame)) continue;
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (const std::uint32_t k : near) pairs.emplace_back(k, std::uint32_t(hosts.size()));
+    Host host{h, frame, PointMap(frame), {}, box, {}};
+    host.paths.push_back(host.points.to_path(polygon.vertices));
+    for (const auto& hole : polygon.holes) host.paths.push_back(host.points.to_path(hole));
+    hosts.push_back(std::move(host));
+  }
+  std::sort(pairs.begin(), pairs.end());
 
   // Each cutter goes to the hosts nearest its plane: coplanar walls (every zone's copy of a partition) or,
   // for glass only, the wall it is recessed behind.
   std::vector<bool> matched(cutters.size(), false);
+  auto pair = pairs.begin();
   for (std::size_t k = 0; k < cutters.size(); ++k) {
     const model::Polygon& cutter = model.polygons[cutters[k]];
-    const double depth =
-        cutter.role == model::Role::Glass ? std::max(tolerance, kGlassInsetDepth) : tolerance;
-    const model::Bounds box = bounds_of(cutter);
     std::vector<std::pair<double, Host*>> found;
-    for (auto& host : hosts) {
-      if (!boxes_touch(host.box, box, depth)) continue;
-      if (const auto d = placement(host, cutter, tolerance, depth)) found.emplace_back(std::abs(*d), &host);
+    for (; pair != pairs.end() && pair->first == k; ++pair) {
+      Host& host = hosts[pair->second];
+      if (const auto d = placement(host, cutter, tolerance, depth_of(k)))
+        found.emplace_back(std::abs(*d), &host);
     }
     if (found.empty()) continue;
     double nearest = found.front().first;

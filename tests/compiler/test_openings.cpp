@@ -236,6 +236,41 @@ TEST(Openings, FarOrTiltedFacesAreNotCut) {
   EXPECT_EQ(m.polygons[0].vertices, rectangle(0, 0, 4, 3, Role::Opaque).vertices);  // untouched, bit for bit
 }
 
+// Cutters find their hosts through a grid of 2 m cells: a door across a cell boundary at negative
+// coordinates, a window set back 0.25 m across the wall's plane (y = 0, a cell boundary), both on an 80 m
+// wall spanning 40 cells, far from the origin; a wall in front of the window by more than its inset, and
+// furniture beside the door (in the door's cells, not in its plane), take nothing.
+TEST(Openings, CuttersFindTheirHostsAcrossGridCells) {
+  for (const double offset : {0.0, -500.25}) {
+    model::Model m;
+    auto shifted = [&](Polygon p) {
+      for (auto& v : p.vertices) v.x += offset;
+      return p;
+    };
+    m.polygons.push_back(shifted(rectangle(-40, 0, 40, 3, Role::Opaque)));
+    m.polygons.push_back(shifted(rectangle(-1, 0, 1, 2, Role::Opening)));
+    Polygon window = shifted(rectangle(30.2, 1, 31.8, 2, Role::Glass));
+    for (auto& v : window.vertices) v.y -= 0.25;  // set back, in the next cell across the wall's plane
+    m.polygons.push_back(window);
+    Polygon screen = shifted(rectangle(30, 0.5, 32, 2.5, Role::Opaque));
+    for (auto& v : screen.vertices) v.y += 0.6;  // a wall 0.6 m in front of the window's wall
+    m.polygons.push_back(screen);
+    Polygon table = shifted(rectangle(1.5, 0, 2.5, 0.8, Role::Opaque));
+    for (auto& v : table.vertices) v.y -= 0.4;
+    m.polygons.push_back(table);
+    const OpeningStats stats = cut_openings(m);
+    EXPECT_EQ(stats.openings_cut, 1u) << offset;
+    EXPECT_EQ(stats.glass_cut, 1u) << offset;
+    EXPECT_EQ(stats.glass_inset, 1u) << offset;
+    EXPECT_EQ(stats.hosts_cut, 1u) << "only the long wall: " << offset;
+    EXPECT_EQ(stats.unmatched, 0u) << offset;
+    double wall_area = 0.0;
+    for (const auto& p : m.polygons)
+      if (p.role == Role::Opaque && p.vertices.front().y == 0.0) wall_area += polygon_area(p);
+    EXPECT_NEAR(wall_area, 240.0 - 2.0 * 2.0 - 1.6 * 1.0, 1e-6) << offset;
+  }
+}
+
 TEST(Openings, OppositeWindingCopiesCutBoth) {
   model::Model m;
   m.polygons.push_back(rectangle(0, 0, 4, 3, Role::Opaque));
