@@ -77,7 +77,7 @@ std::string first_missed(const VisibilityJudge& judge, const CellViews& views,
         if (first <= px) eye = at;
       char text[240];
       std::snprintf(text, sizeof text,
-                    " [polygon %u at (%.2f %.2f %.2f)..(%.2f %.2f %.2f) seen from (%.3f %.3f %.3f)]", id,
+                    " [polygon %u at (%.2f %.2f %.2f)..(%.2f %.2f %.2f) seen from (%.9g %.9g %.9g)]", id,
                     p.box.min.x, p.box.min.y, p.box.min.z, p.box.max.x, p.box.max.y, p.box.max.z, eye.x,
                     eye.y, eye.z);
       return text;
