@@ -62,9 +62,17 @@ class CutterGrid {
   void add(std::uint32_t cutter, const model::Bounds& grown) {
     for_cells(grown, [&](std::uint64_t key) { cells_[key].push_back(cutter); });
   }
-  // f(cutter) for each cutter in a cell `box` overlaps; a cutter may come more than once.
+  // f(cutter) for each cutter in a cell `box` overlaps; a cutter may come more than once. A box over more
+  // cells than hold cutters (a site's ground plane) is given every cutter instead.
   template <class F>
   void for_each_near(const model::Bounds& box, F&& f) const {
+    double cells = 1.0;
+    for (int a = 0; a < 3; ++a) cells *= double(cell_of(box.max[a]) - cell_of(box.min[a]) + 1);
+    if (cells > double(cells_.size())) {
+      for (const auto& [key, cutters] : cells_)
+        for (const std::uint32_t k : cutters) f(k);
+      return;
+    }
     for_cells(box, [&](std::uint64_t key) {
       if (const auto it = cells_.find(key); it != cells_.end())
         for (const std::uint32_t k : it->second) f(k);

@@ -255,6 +255,10 @@ TEST(Openings, CuttersFindTheirHostsAcrossGridCells) {
     Polygon screen = shifted(rectangle(30, 0.5, 32, 2.5, Role::Opaque));
     for (auto& v : screen.vertices) v.y += 0.6;  // a wall 0.6 m in front of the window's wall
     m.polygons.push_back(screen);
+    // A ground plane 200 km long, over more grid cells than hold cutters: still cut (a notch at the door).
+    Polygon ground = shifted(rectangle(-100000, -1, 100000, 0.5, Role::Opaque));
+    for (auto& v : ground.vertices) v.y = 0.0;
+    m.polygons.push_back(ground);
     Polygon table = shifted(rectangle(1.5, 0, 2.5, 0.8, Role::Opaque));
     for (auto& v : table.vertices) v.y -= 0.4;
     m.polygons.push_back(table);
@@ -262,11 +266,14 @@ TEST(Openings, CuttersFindTheirHostsAcrossGridCells) {
     EXPECT_EQ(stats.openings_cut, 1u) << offset;
     EXPECT_EQ(stats.glass_cut, 1u) << offset;
     EXPECT_EQ(stats.glass_inset, 1u) << offset;
-    EXPECT_EQ(stats.hosts_cut, 1u) << "only the long wall: " << offset;
+    EXPECT_EQ(stats.hosts_cut, 2u) << "only the long wall and the ground: " << offset;
     EXPECT_EQ(stats.unmatched, 0u) << offset;
     double wall_area = 0.0;
     for (const auto& p : m.polygons)
-      if (p.role == Role::Opaque && p.vertices.front().y == 0.0) wall_area += polygon_area(p);
+      if (p.role == Role::Opaque && std::all_of(p.vertices.begin(), p.vertices.end(), [](const Vec3& v) {
+            return v.y == 0.0 && v.z >= 0.0 && std::abs(v.x) < 1000.0;
+          }))
+        wall_area += polygon_area(p);
     EXPECT_NEAR(wall_area, 240.0 - 2.0 * 2.0 - 1.6 * 1.0, 1e-6) << offset;
   }
 }
