@@ -259,35 +259,36 @@ std::vector<Winding> HiddenProver::target_outlines(std::uint32_t target) const {
   return tp.detail ? box_faces(tp.box) : std::vector<Winding>{tp.hull};
 }
 
+bool HiddenProver::all_hidden(std::span<const Job> jobs, bool dest_is_target, Search& search) const {
+  std::vector<char> pairs(jobs.size());
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    search.pending += pairs[i] = takes_a_pair(*jobs[i].source, jobs[i].dest, dest_is_target, search.target);
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    search.pending -= pairs[i];
+    if (!hidden(*jobs[i].source, jobs[i].dest, dest_is_target, true, 0, search)) return false;
+  }
+  return true;
+}
+
 Verdict HiddenProver::prove(const Box& cell, std::span<const Exit> exits, std::uint32_t target,
                             const ProofOptions& options, ProofStats* stats) const {
   const VisPolygon& tp = polygons_[target];
   // Touching the cell: sight lines need not pass a portal.
   if (tp.box.overlaps(cell, kShaftSlack)) return prove_from_box(cell, target, options, stats);
   Search search{target, options, tp.detail, {}};
-  bool all = (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0;
-  // Each outline through each exit, all needed hidden: those still to come wait (Search::pending).
-  struct Job {
-    Piece source;
-    Winding part;
-    bool takes_a_pair;
-  };
+  // Each outline through each exit, all needed hidden.
+  std::vector<Piece> sources;
+  sources.reserve(exits.size());
+  for (const Exit& e : exits) sources.push_back({e.hull, false});
   std::vector<Job> jobs;
   for (const Winding& outline : target_outlines(target))
-    for (const Exit& e : exits) {
+    for (std::size_t k = 0; k < exits.size(); ++k) {
       // Only what lies beyond the portal is seen through it.
-      Winding part = clip_front(outline, e.out);
-      if (part.size() < 3 || e.hull.size() < 3) continue;
-      Piece source{e.hull, false};
-      const bool pair = takes_a_pair(source, part, !tp.detail, target);
-      search.pending += pair;
-      jobs.push_back({std::move(source), std::move(part), pair});
+      Winding part = clip_front(outline, exits[k].out);
+      if (part.size() >= 3 && exits[k].hull.size() >= 3) jobs.push_back({&sources[k], std::move(part)});
     }
-  for (const Job& job : jobs) {
-    if (!all) break;
-    search.pending -= job.takes_a_pair;
-    all = hidden(job.source, job.part, !tp.detail, true, 0, search);
-  }
+  const bool all =
+      (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0 && all_hidden(jobs, !tp.detail, search);
   return search.conclude(all, stats);
 }
 
@@ -295,17 +296,11 @@ Verdict HiddenProver::prove_from_box(const Box& viewer, std::uint32_t target, co
                                      ProofStats* stats) const {
   const VisPolygon& tp = polygons_[target];
   Search search{target, options, tp.detail, {}};
-  bool all = (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0;
   const Piece source{box_corners(inset(viewer)), true};
-  const std::vector<Winding> outlines = target_outlines(target);
-  // Every outline needed hidden: those still to come wait (Search::pending).
-  std::vector<char> pairs(outlines.size());
-  for (std::size_t i = 0; i < outlines.size(); ++i)
-    search.pending += pairs[i] = takes_a_pair(source, outlines[i], !tp.detail, target);
-  for (std::size_t i = 0; i < outlines.size() && all; ++i) {
-    search.pending -= pairs[i];
-    all = hidden(source, outlines[i], !tp.detail, true, 0, search);
-  }
+  std::vector<Job> jobs;
+  for (Winding& outline : target_outlines(target)) jobs.push_back({&source, std::move(outline)});
+  const bool all =
+      (tp.detail || tp.hull.size() >= 3) && options.max_pairs > 0 && all_hidden(jobs, !tp.detail, search);
   return search.conclude(all, stats);
 }
 

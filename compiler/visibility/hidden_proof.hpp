@@ -106,6 +106,14 @@ class HiddenProver {
   // Will hidden(source, dest, dest_is_target, ...) take a pair, or settle the piece without one?
   [[nodiscard]] bool takes_a_pair(const Piece& source, const Winding& dest, bool dest_is_target,
                                   std::uint32_t target) const;
+  // One branch a proof needs hidden: from `source` to `dest`, a piece of the target or its box.
+  struct Job {
+    const Piece* source;
+    Winding dest;
+  };
+  // Every job hidden, in order (from the top of a proof), those still to come waiting (Search::pending)
+  // while one is proven.
+  [[nodiscard]] bool all_hidden(std::span<const Job> jobs, bool dest_is_target, Search& search) const;
   // Both pieces hidden, the second waiting (Search::pending) while the first is proven.
   [[nodiscard]] bool both_hidden(const Piece& s1, const Winding& d1, const Piece& s2, const Winding& d2,
                                  bool dest_is_target, bool top, int depth, Search& search) const;
