@@ -64,8 +64,9 @@ class DisplayLight {
 
   // The coarse level's flat light: PLGT (or, where the bundle lacks it, each polygon's mean of its
   // vertices), every circuit as floats, kept sparse like the vertices' and mixed in the vertex shader the
-  // same way, so a dimmer turned while the viewer walks costs one uniform upload. The shader's levels carry a
-  // compact circuit's scale (shader_levels), so a compact circuit's polygon entries are stored divided by it.
+  // same way, so a dimmer turned while the viewer walks costs one upload of the levels. The shader's levels
+  // carry a compact circuit's scale (shader_levels), so a compact circuit's polygon entries are stored
+  // divided by it.
   [[nodiscard]] const std::vector<std::uint32_t>& polygon_first() const { return polygon_first_; }
   [[nodiscard]] const std::vector<FullLightEntry>& polygon_entries() const { return polygon_entries_; }
   // The coarse light of `polygon` for `levels` (circuit order), as the vertex shader mixes it.

@@ -1,11 +1,18 @@
 #include "render/light_mixer.hpp"
 
+#include <cstdint>
+
 #include "model/compact_code.hpp"
+#include "render/display_light.hpp"
 
 namespace walk::render {
 
 static_assert(model::kCompactStops == 16.0, "the vertex shader decodes LINT with 16 stops written out");
-static_assert(kMaxCircuits == 512, "u_levels is vec4[128] and kMaxEntries 512 in the shader below");
+static_assert(kMaxCircuits == 65536, "kMaxEntries in the shader below");
+static_assert(kMaxCircuits < std::uint32_t(kLastFullEntry),
+              "a full entry's circuit plus kLastFull stays exact in a float");
+static_assert(std::uint64_t(kMaxCircuits) << 8 < kLastCompactEntry,
+              "a compact entry's circuit << 8 stays below its last mark");
 
 // Each vertex loops over its own entries only (render/display_light.hpp), one texel each: the full entry's
 // RGBA32F holds radiosity and circuit together.
@@ -19,7 +26,7 @@ uniform samplerBuffer u_light;          // full entries: radiosity (rgb) and cir
 uniform samplerBuffer u_polygon_light;  // the polygons' full entries (the coarse display while moving)
 uniform usamplerBuffer u_polygon_first;  // per polygon, its first entry in u_polygon_light (kNone: none)
 uniform float u_patch_weight;           // 0: coarse, 1: patches, between: the blend after stopping
-uniform vec4 u_levels[128];             // per circuit (4 a vec4); a compact circuit's times its scale
+uniform samplerBuffer u_levels;         // R32F per circuit; a compact circuit's times its scale
 // Circuits shown compact (render/display_light.hpp): colour x sum(level x scale x the code's value,
 // model/compact_code.hpp: 2^((code - 255) x 16 / 254), 0 for code 0).
 uniform samplerBuffer u_compact_colour;  // RGBA8 per vertex
@@ -35,9 +42,9 @@ out vec3 v_radiosity;
 const uint kNone = 0xffffffffu;
 const float kLastFull = 1048576.0;       // added to a vertex's last full entry's circuit
 const uint kLastCompact = 0x80000000u;  // set on a vertex's last compact entry
-const uint kMaxEntries = 512u;          // kMaxCircuits: a bound for the compiler, never reached
+const uint kMaxEntries = 65536u;        // kMaxCircuits: a bound for the compiler, never reached
 
-float level(uint circuit) { return u_levels[circuit >> 2u][circuit & 3u]; }
+float level(uint circuit) { return texelFetch(u_levels, int(circuit)).r; }
 
 // Level x radiosity over a run of full entries from `first`, up to the one marked last.
 vec3 sum_full(samplerBuffer entries, uint first) {
@@ -69,7 +76,7 @@ void main() {
   // Each end skips the fetches it does not need: coarse frames read one polygon's values per vertex.
   vec3 fine = u_patch_weight > 0.0 ? mixed() + compact_mixed(gl_VertexID)
                                    : vec3(0.0);
-  // The polygon's own circuits only, as a vertex's: a dimmer turned while walking is one uniform upload.
+  // The polygon's own circuits only, as a vertex's: a dimmer turned while walking is one upload of the levels.
   vec3 coarse = u_patch_weight < 1.0 ? sum_full(u_polygon_light, texelFetch(u_polygon_first, int(a_polygon)).r)
                                      : vec3(0.0);
   v_radiosity = a_albedo * u_ambient + mix(coarse, fine, u_patch_weight);

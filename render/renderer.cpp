@@ -40,20 +40,20 @@ namespace walk::render {
 
 namespace {
 
-// Texture units of the compact light form and of the polygons' first entries (0: full light, 1: polygon
-// light, 2 and 3: albedo maps).
+// Texture units of the compact light form, the polygons' first entries and the dimmer levels (0: full
+// light, 1: polygon light, 2 and 3: albedo maps).
 constexpr int kCompactColourUnit = 4;
 constexpr int kCompactCodeUnit = 5;
 constexpr int kPolygonFirstUnit = 6;
+constexpr int kLevelsUnit = 7;
 
 // A texture buffer of `format` over a new buffer object holding `bytes` of `data` (at least 4 bytes, so an
 // empty one is still a valid texture).
 void upload_texture_buffer(GLuint& buffer, GLuint& texture, GLenum format, const void* data,
-                           std::size_t bytes) {
+                           std::size_t bytes, GLenum usage = GL_STATIC_DRAW) {
   glGenBuffers(1, &buffer);
   glBindBuffer(GL_TEXTURE_BUFFER, buffer);
-  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr,
-               GL_STATIC_DRAW);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<std::size_t>(bytes, 4)), bytes ? data : nullptr, usage);
   glGenTextures(1, &texture);
   glBindTexture(GL_TEXTURE_BUFFER, texture);
   glTexBuffer(GL_TEXTURE_BUFFER, format, buffer);
@@ -133,7 +133,7 @@ struct ScenePass {
         u_view_projection(program.uniform("u_view_projection")),
         u_light(program.uniform("u_light")),
         // Absent from a program the GLSL compiler could prove never reads them: not an error.
-        u_levels(glGetUniformLocation(program.id(), "u_levels[0]")),
+        u_levels(glGetUniformLocation(program.id(), "u_levels")),
         u_ambient(program.uniform("u_ambient")),
         u_inv_exposure(program.uniform("u_inv_exposure")),
         u_opacity(program.uniform("u_opacity")),
@@ -177,9 +177,10 @@ struct Renderer::Impl {
   GLuint vao = 0, vbo = 0, ibo = 0, refined_vao = 0, refined_ibo = 0, light_buffer = 0, light_texture = 0,
          polygon_buffer = 0, polygon_texture = 0, polygon_first_buffer = 0, polygon_first_texture = 0,
          compact_colour_buffer = 0, compact_colour_texture = 0, compact_code_buffer = 0,
-         compact_code_texture = 0, light_range_vbo = 0;
+         compact_code_texture = 0, light_range_vbo = 0, levels_buffer = 0, levels_texture = 0;
   DisplayLight display_light;
-  std::vector<float> shader_levels;  // this frame's, as u_levels takes them (DisplayLight::shader_levels)
+  std::vector<float> shader_levels;    // this frame's, as u_levels takes them (DisplayLight::shader_levels)
+  std::vector<float> uploaded_levels;  // what levels_buffer holds: a frame uploads only a change
   // Both index forms laid out cluster by cluster (fine INDX; coarse CIDX, drawn with flat polygon light
   // while moving, empty when the bundle has none), and each cell's PVS as units of that layout.
   ClusterLayout layout;
@@ -279,6 +280,8 @@ struct Renderer::Impl {
     glDeleteBuffers(1, &light_range_vbo);
     glDeleteTextures(1, &light_texture);
     glDeleteBuffers(1, &light_buffer);
+    glDeleteTextures(1, &levels_texture);
+    glDeleteBuffers(1, &levels_buffer);
     glDeleteBuffers(1, &ibo);
     glDeleteBuffers(1, &refined_ibo);
     glDeleteBuffers(1, &shaded_vbo);
@@ -531,12 +534,12 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
   r.software = software_rasterizer();
   const auto vertices = bundle.vertices();
   const std::size_t circuits = bundle.circuits().size();
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   if (circuits > std::size_t(kMaxCircuits))
     throw Error("bundle '" + bundle.path() + "' has " + std::to_string(circuits) +
                 " circuits; the renderer mixes at most " + std::to_string(kMaxCircuits) +
                 " (merge circuits that are always dimmed together)");
-  GLint max_texels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   const std::size_t entries =
       std::max(r.display_light.full_entries().size(), r.display_light.compact_entries().size());
   if (entries > std::size_t(max_texels))
@@ -612,6 +615,9 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
     upload_texture_buffer(r.polygon_first_buffer, r.polygon_first_texture, GL_R32UI, first.data(),
                           first.size() * sizeof(std::uint32_t));
   }
+  // The dimmer levels, one float a circuit: written by the first frame and again whenever they change.
+  upload_texture_buffer(r.levels_buffer, r.levels_texture, GL_R32F, nullptr, circuits * sizeof(float),
+                        GL_DYNAMIC_DRAW);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
   if (!bundle.textures().empty()) {
@@ -981,9 +987,13 @@ void Renderer::Impl::use_pass(const ScenePass& pass, const glm::mat4& view_proje
   glUseProgram(pass.program.id());
   glUniformMatrix4fv(pass.u_view_projection, 1, GL_FALSE, &view_projection[0][0]);
   display_light.shader_levels(levels, shader_levels);
-  shader_levels.resize((shader_levels.size() + 3) / 4 * 4, 0.0f);  // whole vec4s
-  if (pass.u_levels >= 0 && !shader_levels.empty())
-    glUniform4fv(pass.u_levels, GLsizei(shader_levels.size() / 4), shader_levels.data());
+  if (shader_levels != uploaded_levels) {
+    glBindBuffer(GL_TEXTURE_BUFFER, levels_buffer);
+    glBufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(shader_levels.size() * sizeof(float)),
+                    shader_levels.data());
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    uploaded_levels = shader_levels;
+  }
   glUniform1f(pass.u_ambient, meta.ambient);
   glUniform1f(pass.u_inv_exposure, 1.0f / exposure());
   glUniform1f(pass.u_patch_weight, std::clamp(patch_weight, 0.0f, 1.0f));
@@ -1003,6 +1013,9 @@ void Renderer::Impl::use_pass(const ScenePass& pass, const glm::mat4& view_proje
   glActiveTexture(GL_TEXTURE0 + kCompactCodeUnit);
   glBindTexture(GL_TEXTURE_BUFFER, compact_code_texture);
   if (pass.u_compact_code >= 0) glUniform1i(pass.u_compact_code, kCompactCodeUnit);
+  glActiveTexture(GL_TEXTURE0 + kLevelsUnit);
+  glBindTexture(GL_TEXTURE_BUFFER, levels_texture);
+  if (pass.u_levels >= 0) glUniform1i(pass.u_levels, kLevelsUnit);
   glActiveTexture(GL_TEXTURE0);
 }
 

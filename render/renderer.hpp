@@ -96,7 +96,7 @@ class Renderer {
  public:
   // Uploads the bundle's buffers into the current context, which must stay current for every call and for
   // the destructor. The bundle must outlive the renderer. Throws walk::Error for more than kMaxCircuits
-  // circuits (512).
+  // circuits (65,536).
   // `light_form`: each circuit in the form the compiler chose (compact where within its limit), or all full.
   explicit Renderer(const model::Bundle& bundle, DisplayLightForm light_form = DisplayLightForm::AsCompiled);
   ~Renderer();

@@ -167,7 +167,23 @@ TEST_P(PixelTest, GlassIsBlendedOverTheRoomBehindIt) {
   EXPECT_EQ(centre(image)[3], 255);
 }
 
-TEST_P(PixelTest, MoreCircuitsThanTheLevelsUniformHoldsIsAClearError) {
+// At the limit the bundle is drawn, its second circuit's light moved onto the last circuit, whose level is
+// the levels buffer's last texel.
+TEST_P(PixelTest, CircuitsUpToTheLimitAreDrawnAndOneMoreIsAClearError) {
+  scene_.circuits = kMaxCircuits;
+  {
+    model::BundleContents contents = make_two_rooms(scene_);
+    const auto last = std::uint32_t(kMaxCircuits - 1);
+    for (model::LightEntry& e : contents.light.entries)
+      if (e.circuit == 1) e.circuit = last;
+    auto bundle = open_bundle(contents, "circuits_at_limit");
+    Renderer renderer(*bundle);
+    std::vector<float> levels(std::size_t(kMaxCircuits), 1.0f);
+    levels[last] = 0.5f;
+    renderer.set_dimmers(levels);
+    expect_colour(centre(render(*bundle, looking_along_x(+1.0), &renderer)),
+                  radiosity(scene_, true, scene_.wall_factor, 1, 0.5), scene_.exposure, "at the limit");
+  }
   scene_.circuits = kMaxCircuits + 1;
   auto bundle = open_two_rooms(scene_, "circuits");
   try {
@@ -182,12 +198,13 @@ TEST_P(PixelTest, MoreCircuitsThanTheLevelsUniformHoldsIsAClearError) {
 }
 
 // A building with many circuits, each reaching a few rooms: the two rooms' light moved onto circuits 37 and
-// 509 of 512 (the last vec4 of u_levels), the rest dark. Each vertex keeps two entries, and the dimmers of
-// those circuits mix them as the two-circuit scene's do.
+// 1,000 of 1,024 (past the 512 a uniform array of dimmer levels held, as the generated L building's 850
+// are), the rest dark. Each vertex keeps two entries, and the dimmers of those circuits mix them as the
+// two-circuit scene's do.
 TEST_P(PixelTest, ManyCircuitsMixOnlyTheCircuitsThatReachAVertex) {
-  scene_.circuits = kMaxCircuits;
+  scene_.circuits = 1024;
   model::BundleContents contents = make_two_rooms(scene_);
-  const std::size_t n = std::size_t(kMaxCircuits), far_a = 37, far_b = 509;
+  const std::size_t n = 1024, far_a = 37, far_b = 1000;
   std::vector<float> dense = contents.light.dense(n);
   for (std::size_t v = 0; v < contents.vertices.size(); ++v)
     for (int k = 0; k < 3; ++k) {
@@ -199,7 +216,7 @@ TEST_P(PixelTest, ManyCircuitsMixOnlyTheCircuitsThatReachAVertex) {
   contents.light = model::LightRows::from_dense(dense, n);
   auto bundle = open_bundle(contents, "many_circuits");
   const DisplayLight light(*bundle, DisplayLightForm::AsCompiled);
-  EXPECT_EQ(light.full_entries().size(), 2 * dark) << "two of 512 circuits a vertex";
+  EXPECT_EQ(light.full_entries().size(), 2 * dark) << "two of 1,024 circuits a vertex";
   EXPECT_EQ(light.ranges()[dark].full_first, VertexLightRange::kNone);
   EXPECT_EQ(light.ranges()[dark - 1].full_first, 2 * (dark - 1));
   const std::vector<float> all_on(n, 1.0f);
@@ -212,7 +229,7 @@ TEST_P(PixelTest, ManyCircuitsMixOnlyTheCircuitsThatReachAVertex) {
   renderer.set_dimmers(levels);
   const Image image = render(*bundle, looking_along_x(+1.0), &renderer);
   expect_colour(centre(image), radiosity(scene_, true, scene_.wall_factor, 1, 0.5), scene_.exposure,
-                "circuit 509 at 0.5");
+                "circuit 1000 at 0.5");
   levels[far_a] = 0.0f;
   renderer.set_dimmers(levels);
   const Image dimmed = render(*bundle, looking_along_x(+1.0), &renderer);

@@ -16,7 +16,9 @@ struct Builder {
   const TwoRooms& scene;
   model::BundleContents c;
   std::uint32_t group_a = 0, group_b = 1;
-  std::vector<float> light;  // [vertex][circuit][3], stored sparse in c.light once every rectangle is in
+  // [vertex][lit circuit][3] for the two lit circuits (the extra ones are dark), stored sparse in c.light
+  // once every rectangle is in.
+  std::vector<float> light;
 
   // A rectangle corner, corner+u, corner+u+v, corner+v: counter-clockwise about u x v, its front side.
   std::uint32_t rect(glm::dvec3 corner, glm::dvec3 u, glm::dvec3 v, bool room_b, double factor,
@@ -51,9 +53,8 @@ struct Builder {
         const double gradient = scene.light_gradient ? 0.4 + 1.2 * double(i) / n
                                 : twisted            ? ((i + j) % 2 == 0 ? 1.6 : 0.4)
                                                      : 1.0;
-        for (int ci = 0; ci < scene.circuits; ++ci)
-          for (int k = 0; k < 3; ++k)
-            light.push_back(ci < 2 ? float(albedo[k] * circuit[ci] * factor * gradient) : 0.0f);
+        for (int ci = 0; ci < std::min(scene.circuits, 2); ++ci)
+          for (int k = 0; k < 3; ++k) light.push_back(float(albedo[k] * circuit[ci] * factor * gradient));
       }
     const std::uint32_t b = p.first_vertex, row = std::uint32_t(n + 1);
     for (std::uint32_t j = 0; j < std::uint32_t(n); ++j)
@@ -122,7 +123,7 @@ model::BundleContents make_two_rooms(const TwoRooms& scene) {
   }
   b.room(4.0, true);
   const auto total = std::uint32_t(c.polygons.size());
-  c.light = model::LightRows::from_dense(b.light, std::size_t(scene.circuits));
+  c.light = model::LightRows::from_dense(b.light, std::size_t(std::min(scene.circuits, 2)));
 
   for (int i = 0; i < scene.circuits; ++i)
     c.circuits.push_back({c.add_string("circuit" + std::to_string(i)), 1.0f});
