@@ -34,45 +34,58 @@ float difference(const glm::vec3& a, const glm::vec3& b) {
   return std::abs(a.x - b.x) + std::abs(a.y - b.y) + std::abs(a.z - b.z);
 }
 
+// Appends polygon `id`'s quads.
+void append_quads(std::uint32_t id, const model::PolygonRecord& p, std::span<const std::uint32_t> indices,
+                  std::span<const model::VertexRecord> vertices, std::vector<Quad>& quads) {
+  const std::uint64_t end = std::uint64_t(p.first_index) + p.index_count;
+  if (end > indices.size()) return;
+  for (std::uint64_t i = p.first_index; i + 6 <= end;) {
+    std::array<std::uint32_t, 3> t1{indices[i], indices[i + 1], indices[i + 2]};
+    std::array<std::uint32_t, 3> t2{indices[i + 3], indices[i + 4], indices[i + 5]};
+    // The corner of t1 not in t2.
+    int alone = -1, shared = 0;
+    for (int k = 0; k < 3; ++k) {
+      const bool in2 = std::find(t2.begin(), t2.end(), t1[k]) != t2.end();
+      shared += in2;
+      if (!in2) alone = k;
+    }
+    if (shared != 2 || alone < 0) {
+      i += 3;  // not a pair: try from the next triangle
+      continue;
+    }
+    rotate_to(t1, t1[std::size_t(alone)]);  // t1 = (u1, p, q), counter-clockwise
+    const std::uint32_t u1 = t1[0], pp = t1[1], q = t1[2];
+    // t2 must run p -> u2 -> q, the shared edge reversed: then u1, p, u2, q is the quad, counter-clockwise.
+    if (!rotate_to(t2, pp) || t2[2] != q) {
+      i += 3;
+      continue;
+    }
+    if (!vertices.empty() && !convex(vertices, {u1, pp, t2[1], q})) {
+      i += 6;  // a real pair, but flipping it would fold: leave both triangles as they are
+      continue;
+    }
+    quads.push_back({std::uint32_t(i), id, {u1, pp, t2[1], q}});
+    i += 6;
+  }
+}
+
 }  // namespace
 
 std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
                              std::span<const std::uint32_t> indices,
                              std::span<const model::VertexRecord> vertices) {
   std::vector<Quad> quads;
-  for (std::uint32_t id = 0; id < polygons.size(); ++id) {
-    const auto& p = polygons[id];
-    const std::uint64_t end = std::uint64_t(p.first_index) + p.index_count;
-    if (end > indices.size()) continue;
-    for (std::uint64_t i = p.first_index; i + 6 <= end;) {
-      std::array<std::uint32_t, 3> t1{indices[i], indices[i + 1], indices[i + 2]};
-      std::array<std::uint32_t, 3> t2{indices[i + 3], indices[i + 4], indices[i + 5]};
-      // The corner of t1 not in t2.
-      int alone = -1, shared = 0;
-      for (int k = 0; k < 3; ++k) {
-        const bool in2 = std::find(t2.begin(), t2.end(), t1[k]) != t2.end();
-        shared += in2;
-        if (!in2) alone = k;
-      }
-      if (shared != 2 || alone < 0) {
-        i += 3;  // not a pair: try from the next triangle
-        continue;
-      }
-      rotate_to(t1, t1[std::size_t(alone)]);  // t1 = (u1, p, q), counter-clockwise
-      const std::uint32_t u1 = t1[0], pp = t1[1], q = t1[2];
-      // t2 must run p -> u2 -> q, the shared edge reversed: then u1, p, u2, q is the quad, counter-clockwise.
-      if (!rotate_to(t2, pp) || t2[2] != q) {
-        i += 3;
-        continue;
-      }
-      if (!vertices.empty() && !convex(vertices, {u1, pp, t2[1], q})) {
-        i += 6;  // a real pair, but flipping it would fold: leave both triangles as they are
-        continue;
-      }
-      quads.push_back({std::uint32_t(i), id, {u1, pp, t2[1], q}});
-      i += 6;
-    }
-  }
+  for (std::uint32_t id = 0; id < polygons.size(); ++id)
+    append_quads(id, polygons[id], indices, vertices, quads);
+  return quads;
+}
+
+std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
+                             std::span<const std::uint32_t> ids, std::span<const std::uint32_t> indices,
+                             std::span<const model::VertexRecord> vertices) {
+  std::vector<Quad> quads;
+  for (const std::uint32_t id : ids)
+    if (id < polygons.size()) append_quads(id, polygons[id], indices, vertices, quads);
   return quads;
 }
 

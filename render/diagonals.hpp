@@ -26,6 +26,11 @@ struct Quad {
 [[nodiscard]] std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
                                            std::span<const std::uint32_t> indices,
                                            std::span<const model::VertexRecord> vertices = {});
+// The quads of the polygons `ids` only, in that order (a still view's units, found when first seen).
+[[nodiscard]] std::vector<Quad> find_quads(std::span<const model::PolygonRecord> polygons,
+                                           std::span<const std::uint32_t> ids,
+                                           std::span<const std::uint32_t> indices,
+                                           std::span<const model::VertexRecord> vertices);
 
 // Rewrites each quad's six entries of `indices` (same layout as INDX, so draw lists stay valid) for the
 // diagonal with the smaller colour difference between its ends; ties keep the bundle's. Returns how many

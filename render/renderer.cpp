@@ -34,6 +34,7 @@
 #include "render/shader.hpp"
 #include "render/subdivision.hpp"
 #include "render/tonemap.hpp"
+#include "render/unit_refinement.hpp"
 #include "render/upscale.hpp"
 
 namespace walk::render {
@@ -187,6 +188,9 @@ struct Renderer::Impl {
   std::vector<std::optional<std::vector<std::uint32_t>>> cell_units;  // made on first visit
   std::vector<std::uint32_t> every_unit;
   std::vector<std::uint32_t> near_units;  // this frame's, when sight starts in more than the eye's cell
+  // The units the last frame's list was made from (its cell's PVS, the near cells' or every unit): what a
+  // still view may draw, and so what its diagonals and sub-quads are made for.
+  const std::vector<std::uint32_t>* sight_units = &every_unit;
   // The view the near cells and the portal walk were made for (frame_list() reuses them for the same one).
   std::uint32_t seen_cell = FrameStats::kNoCell;
   glm::mat4 seen_matrix{0.0f};
@@ -263,7 +267,7 @@ struct Renderer::Impl {
   std::optional<View> shown_view;
   int shown_width = 0, shown_height = 0;
   std::vector<float> shown_levels;
-  std::vector<Quad> quads;                     // found on first use
+  std::optional<UnitRefinement> refinement;    // made on first use
   std::vector<std::uint32_t> refined_indices;  // INDX with colour-chosen diagonals
   bool restart = true;  // settings changed or draw() overwrote the picture: start again as if moved
 
@@ -379,6 +383,7 @@ struct Renderer::Impl {
       walked = false;
       seen_cell = FrameStats::kNoCell;
     }
+    sight_units = units;
     const ViewKey key{cell,    view_projection_matrix, units,      portals,    frustum_culling,
                       culling, occlusion_culling,      full_width, full_height};
     if (view_key != key) {
@@ -485,36 +490,6 @@ void draw_batch(const DrawBatch& batch) {
   glMultiDrawElements(GL_TRIANGLES, batch.counts.data(), GL_UNSIGNED_INT,
                       reinterpret_cast<const void* const*>(batch.byte_offsets.data()),
                       GLsizei(batch.counts.size()));
-}
-
-// Orders subdivided triangles (three vertices each) by the unit of their polygon and gives each unit its
-// run, in vertices. Triangles of a polygon no unit draws are dropped: their quads are not drawn either.
-void sort_by_unit(std::vector<ShadedVertex>& triangles, std::span<const std::uint32_t> unit_of_polygon,
-                  std::size_t units, std::vector<IndexRange>& runs) {
-  const auto unit_of = [&](std::size_t t) {
-    const std::uint32_t p = triangles[3 * t].polygon;
-    return p < unit_of_polygon.size() ? unit_of_polygon[p] : ClusterLayout::kNoUnit;
-  };
-  runs.assign(units, {});
-  for (std::size_t t = 0; t < triangles.size() / 3; ++t)
-    if (const std::uint32_t u = unit_of(t); u < units) runs[u].count += 3;
-  std::uint32_t first = 0;
-  for (IndexRange& run : runs) {
-    run.first = first;
-    first += run.count;
-  }
-  // A counting sort of triangle ids, then one sequential gather: no zero-filled copy of the vertices.
-  std::vector<std::uint32_t> order(first / 3);
-  std::vector<std::uint32_t> next(units);
-  for (std::size_t u = 0; u < units; ++u) next[u] = runs[u].first / 3;
-  for (std::size_t t = 0; t < triangles.size() / 3; ++t)
-    if (const std::uint32_t u = unit_of(t); u < units) order[next[u]++] = std::uint32_t(t);
-  std::vector<ShadedVertex> sorted;
-  sorted.reserve(first);
-  for (const std::uint32_t t : order)
-    sorted.insert(sorted.end(), triangles.begin() + std::ptrdiff_t(3 * t),
-                  triangles.begin() + std::ptrdiff_t(3 * t + 3));
-  triangles = std::move(sorted);
 }
 
 bool same_view(const View& a, const View& b) {
@@ -708,6 +683,7 @@ void Renderer::set_pvs_culling(bool enabled) {
 }
 void Renderer::set_refine_settings(const RefineSettings& settings) {
   impl_->schedule = RefineSchedule(settings);
+  impl_->refinement.reset();  // every unit found and made again at the next stop
   impl_->jitter = jitter_pattern(impl_->schedule.settings().aa_samples);
   impl_->restart = true;
 }
@@ -1094,46 +1070,59 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glViewport(0, 0, width, height);
 }
 
-// The mix is computed here exactly as the vertex shader does, once per diagonal choice (not per frame).
+// For the units the still view may draw (sight_units), each made once per mix (UnitRefinement); a vertex's
+// colour is computed here exactly as the vertex shader mixes it.
 void Renderer::Impl::choose_diagonals() {
-  if (quads.empty()) quads = find_quads(layout.fine.polygons, layout.fine.indices, bundle.vertices());
   const auto vertices = bundle.vertices();
-  const float ambient = bundle.meta().ambient;
-  std::vector<glm::vec3> colour(vertices.size());
-  for (std::size_t v = 0; v < vertices.size(); ++v) {
-    const float* albedo = vertices[v].albedo;
-    colour[v] = ambient * glm::vec3(albedo[0], albedo[1], albedo[2]) + display_light.mixed(v, levels);
-  }
+  if (!refinement)
+    refinement.emplace(RefinementInput{layout.fine.polygons, layout.unit_of_polygon, layout.units(), vertices,
+                                       layout.fine.indices});
   if (refined_indices.empty()) refined_indices = layout.fine.indices;
-  stats.quads_flipped = std::uint32_t(render::choose_diagonals(quads, colour, refined_indices));
-
-  // Subdivision of opaque quads only: glass is blended and drawn last, apart.
+  const float ambient = bundle.meta().ambient;
+  const auto colour_of = [&](std::uint32_t v) {
+    const float* albedo = vertices[v].albedo;
+    return ambient * glm::vec3(albedo[0], albedo[1], albedo[2]) + display_light.mixed(v, levels);
+  };
   const auto& settings = schedule.settings();
-  std::vector<Quad> opaque;
-  for (const Quad& q : quads)
-    if (bundle.polygons()[q.polygon].role != std::uint32_t(model::Role::Glass)) opaque.push_back(q);
-  Subdivision sub = subdivide(opaque, vertices, colour, settings.subdivision_error * exposure(),
-                              settings.subdivision_depth);
-  sort_by_unit(sub.triangles, layout.unit_of_polygon, layout.units(), shaded_runs);
+  const std::span<const std::uint32_t> units = *sight_units;
+  const std::vector<std::uint32_t> made =
+      refinement->update(units, {levels, settings.subdivision_error * exposure(), settings.subdivision_depth},
+                         colour_of, refined_indices);
+  const RefinementTotals totals = refinement->totals(units);
+  stats.quads_flipped = totals.quads_flipped;
+  stats.quads_subdivided = totals.quads_subdivided;
+  stats.subdivision_triangles = totals.subdivision_triangles;
+
   // The replaced quads stay in the index buffer, under their sub-quads: where a sub-quad's edge midpoint
   // meets a neighbour that was not split (a T-junction), pixels that fall between the triangles in float
   // show the quad's own Gouraud colour instead of a crack to the background.
-  stats.quads_subdivided = std::uint32_t(sub.replaced_quads.size());
-  stats.subdivision_triangles = std::uint32_t(sub.triangles.size() / 3);
-  shaded_vertices = GLsizei(sub.triangles.size());
-  if (!sub.triangles.empty()) {
+  std::vector<ShadedVertex> shaded_triangles;
+  refinement->gather(units, shaded_triangles, shaded_runs);
+  shaded_vertices = GLsizei(shaded_triangles.size());
+  if (!shaded_triangles.empty()) {
     // The map view may have made the program already; the VAO is this step's own.
     make_shaded_program();
     if (!shaded_vao) make_shaded_vao(shaded_vao, shaded_vbo);
     glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(sub.triangles.size() * sizeof(ShadedVertex)),
-                 sub.triangles.data(), GL_DYNAMIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(shaded_triangles.size() * sizeof(ShadedVertex)),
+                 shaded_triangles.data(), GL_DYNAMIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
-  // Through the copy target: the element binding belongs to whichever VAO is bound.
+  // The made units' ranges only, runs of units next to each other as one (through the copy target: the
+  // element binding belongs to whichever VAO is bound).
   glBindBuffer(GL_COPY_WRITE_BUFFER, refined_ibo);
-  glBufferSubData(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(refined_indices.size() * sizeof(std::uint32_t)),
-                  refined_indices.data());
+  std::vector<IndexRange> ranges;
+  for (const std::uint32_t u : made)
+    for (const IndexRange& r : {layout.fine.opaque[u], layout.fine.glass[u]}) {
+      if (r.count == 0) continue;
+      if (!ranges.empty() && ranges.back().first + ranges.back().count == r.first)
+        ranges.back().count += r.count;
+      else
+        ranges.push_back(r);
+    }
+  for (const IndexRange& r : ranges)
+    glBufferSubData(GL_COPY_WRITE_BUFFER, GLintptr(r.first * sizeof(std::uint32_t)),
+                    GLsizeiptr(r.count * sizeof(std::uint32_t)), refined_indices.data() + r.first);
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
   check_gl("uploading the chosen diagonals");
 }

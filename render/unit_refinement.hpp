@@ -1,0 +1,82 @@
+#pragma once
+// The still view's quad diagonals and subdivision (the paper's third and fourth refinement steps), made unit
+// by unit for the units a view may draw and kept for the mix they were made under, so a stop costs the CPU
+// what the viewer's cell sees rather than the whole model (over every quad of the generated L building, 8.6 M
+// triangles, one stop took 1.06 s before its first refined frame). Pure CPU.
+#include <cstdint>
+#include <functional>
+#include <glm/vec3.hpp>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "model/bundle_format.hpp"
+#include "render/cluster_layout.hpp"
+#include "render/diagonals.hpp"
+#include "render/subdivision.hpp"
+
+namespace walk::render {
+
+// What the units are made from: the renderer's fine form as laid out by unit.
+struct RefinementInput {
+  std::span<const model::PolygonRecord> polygons;  // per polygon, its range in `indices` and its role
+  std::span<const std::uint32_t> unit_of_polygon;  // ClusterLayout::kNoUnit: not drawn
+  std::size_t units = 0;
+  std::span<const model::VertexRecord> vertices;
+  std::span<const std::uint32_t> indices;  // the bundle's diagonals, where the quads are found
+};
+
+// What the units were made for: when any of it changes, every unit is made again when next seen.
+struct RefinementKey {
+  std::vector<float> levels;  // the dimmers' mix
+  float threshold = 0.0f;     // twist above which a quad is subdivided, in displayed radiosity
+  int max_depth = 0;
+  bool operator==(const RefinementKey&) const = default;
+};
+
+// Sums over a set of units, for FrameStats.
+struct RefinementTotals {
+  std::uint32_t quads_flipped = 0, quads_subdivided = 0, subdivision_triangles = 0;
+};
+
+class UnitRefinement {
+ public:
+  explicit UnitRefinement(const RefinementInput& input);
+
+  // Makes each of `units` (sorted or not) that is not yet made for `key`: its quads (found on first use),
+  // their diagonals by `colour_of` (a vertex's displayed radiosity) written into `refined_indices` (the fine
+  // form's layout), and its opaque quads' sub-quads. Returns the units made by this call, whose ranges of
+  // `refined_indices` changed.
+  std::vector<std::uint32_t> update(std::span<const std::uint32_t> units, const RefinementKey& key,
+                                    const std::function<glm::vec3(std::uint32_t)>& colour_of,
+                                    std::span<std::uint32_t> refined_indices);
+
+  // The sub-quad triangles of `units` (made ones), concatenated in the order given, and each unit's run in
+  // them, in vertices; every other unit's run is empty.
+  void gather(std::span<const std::uint32_t> units, std::vector<ShadedVertex>& triangles,
+              std::vector<IndexRange>& runs) const;
+
+  [[nodiscard]] RefinementTotals totals(std::span<const std::uint32_t> units) const;
+
+ private:
+  struct Unit {
+    bool quads_found = false;
+    bool made = false;  // for key_
+    std::vector<Quad> quads;
+    std::vector<ShadedVertex> triangles;  // its sub-quads' triangles, three vertices each
+    std::uint32_t flipped = 0, subdivided = 0;
+  };
+  void make(std::uint32_t u, const std::function<glm::vec3(std::uint32_t)>& colour_of,
+            std::span<std::uint32_t> refined_indices);
+
+  RefinementInput input_;
+  std::vector<std::uint32_t> polygon_first_, polygon_ids_;  // per unit, its polygons (ids in order)
+  std::vector<Unit> units_;
+  RefinementKey key_;
+  bool keyed_ = false;
+  // Per vertex, written for the vertices of the quads being made only (the diagonal choice and the
+  // subdivision index colour by vertex): left uninitialised, so a model's untouched pages cost nothing.
+  std::unique_ptr<glm::vec3[]> colour_;
+};
+
+}  // namespace walk::render

@@ -1,0 +1,124 @@
+// The still view's diagonals and sub-quads made unit by unit (render/unit_refinement.hpp) against the same
+// choice over the whole model at once: the units asked for get exactly the whole model's indices and
+// sub-quads, the others keep the bundle's, and a unit is made once per mix.
+#include "render/unit_refinement.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/vec3.hpp>
+#include <numeric>
+#include <vector>
+
+#include "model/model.hpp"
+#include "render/cluster_layout.hpp"
+#include "render/diagonals.hpp"
+#include "render/subdivision.hpp"
+#include "two_rooms.hpp"
+
+namespace walk::render::test {
+namespace unit_refinement_test {  // named, not anonymous: the suite compiles as unity batches
+
+struct Fixture {
+  std::unique_ptr<model::Bundle> bundle;
+  ClusterLayout layout;
+  std::vector<float> levels;
+  std::vector<glm::vec3> colour;  // per vertex: a field that curves across each quad, so diagonals differ
+};
+
+Fixture rooms(const std::vector<float>& levels) {
+  TwoRooms scene;
+  scene.subdivisions = 4;
+  Fixture f;
+  f.bundle = open_two_rooms(scene, "unit_refinement");
+  f.layout = lay_out_clusters(layout_input(*f.bundle));
+  f.levels = levels;
+  for (const model::VertexRecord& v : f.bundle->vertices()) {
+    const glm::vec3 p(v.position[0], v.position[1], v.position[2]);
+    const float wave = std::sin(2.3f * p.x + 1.7f * p.y + 2.9f * p.z) + 0.4f * p.x * p.z;
+    f.colour.push_back(glm::vec3(1.0f + 0.5f * wave, 1.0f - 0.3f * wave, 1.0f));
+  }
+  return f;
+}
+
+RefinementInput input_of(const Fixture& f) {
+  return {f.layout.fine.polygons, f.layout.unit_of_polygon, f.layout.units(), f.bundle->vertices(),
+          f.layout.fine.indices};
+}
+
+// The unit's index ranges in the fine form, copied out of `indices`.
+std::vector<std::uint32_t> unit_indices(const Fixture& f, std::uint32_t u,
+                                        const std::vector<std::uint32_t>& indices) {
+  std::vector<std::uint32_t> out;
+  for (const IndexRange& r : {f.layout.fine.opaque[u], f.layout.fine.glass[u]})
+    out.insert(out.end(), indices.begin() + r.first, indices.begin() + r.first + r.count);
+  return out;
+}
+
+TEST(UnitRefinement, UnitsMadeAloneEqualTheWholeModelsChoice) {
+  const Fixture f = rooms({1.0f, 0.7f});
+  constexpr float kThreshold = 0.01f;  // displayed radiosity: the rooms' light is about 1
+  constexpr int kDepth = 3;
+  // The whole model at once, as the renderer chose before units.
+  const auto vertices = f.bundle->vertices();
+  const std::vector<Quad> quads = find_quads(f.layout.fine.polygons, f.layout.fine.indices, vertices);
+  std::vector<std::uint32_t> whole = f.layout.fine.indices;
+  const std::size_t flipped = choose_diagonals(quads, f.colour, whole);
+  std::vector<Quad> opaque;
+  for (const Quad& q : quads)
+    if (f.layout.fine.polygons[q.polygon].role != std::uint32_t(model::Role::Glass)) opaque.push_back(q);
+  const Subdivision sub = subdivide(opaque, vertices, f.colour, kThreshold, kDepth);
+  ASSERT_GT(flipped, 0u);
+  ASSERT_GT(sub.replaced_quads.size(), 0u);
+
+  std::vector<std::uint32_t> all(f.layout.units());
+  std::iota(all.begin(), all.end(), 0u);
+  const std::vector<std::uint32_t> first_half(all.begin(), all.begin() + std::ptrdiff_t(all.size() / 2));
+  const std::vector<std::uint32_t> second_half(all.begin() + std::ptrdiff_t(all.size() / 2), all.end());
+  UnitRefinement refinement(input_of(f));
+  std::vector<std::uint32_t> indices = f.layout.fine.indices;
+  int calls = 0;
+  const auto colour_of = [&](std::uint32_t v) {
+    ++calls;
+    return f.colour[v];
+  };
+  const RefinementKey key{f.levels, kThreshold, kDepth};
+  EXPECT_EQ(refinement.update(first_half, key, colour_of, indices), first_half);
+  for (const std::uint32_t u : first_half)
+    EXPECT_EQ(unit_indices(f, u, indices), unit_indices(f, u, whole)) << u;
+  for (const std::uint32_t u : second_half)
+    EXPECT_EQ(unit_indices(f, u, indices), unit_indices(f, u, f.layout.fine.indices)) << "not asked: " << u;
+  const int first_calls = calls;
+  EXPECT_GT(first_calls, 0);
+  EXPECT_LT(first_calls, int(4 * quads.size())) << "only the first half's vertices are coloured";
+
+  EXPECT_TRUE(refinement.update(first_half, key, colour_of, indices).empty()) << "made once per mix";
+  EXPECT_EQ(calls, first_calls);
+  EXPECT_EQ(refinement.update(all, key, colour_of, indices), second_half);
+  EXPECT_EQ(indices, whole);
+  const RefinementTotals totals = refinement.totals(all);
+  EXPECT_EQ(totals.quads_flipped, flipped);
+  EXPECT_EQ(totals.quads_subdivided, sub.replaced_quads.size());
+  EXPECT_EQ(totals.subdivision_triangles, sub.triangles.size() / 3);
+
+  // Each unit's run holds its own polygons' sub-quads; units not asked for have none.
+  std::vector<ShadedVertex> triangles;
+  std::vector<IndexRange> runs;
+  refinement.gather(first_half, triangles, runs);
+  ASSERT_EQ(runs.size(), f.layout.units());
+  EXPECT_EQ(triangles.size(), 3 * std::size_t(refinement.totals(first_half).subdivision_triangles));
+  for (const std::uint32_t u : second_half) EXPECT_EQ(runs[u].count, 0u) << u;
+  for (const std::uint32_t u : first_half)
+    for (std::uint32_t k = runs[u].first; k < runs[u].first + runs[u].count; ++k)
+      ASSERT_EQ(f.layout.unit_of_polygon[triangles[k].polygon], u);
+
+  // A new mix makes each unit again when it is next asked for.
+  const RefinementKey dimmed{{1.0f, 0.2f}, kThreshold, kDepth};
+  EXPECT_EQ(refinement.update(second_half, dimmed, colour_of, indices), second_half);
+  EXPECT_EQ(refinement.totals(first_half).subdivision_triangles, 0u) << "the first half is not made for it";
+  EXPECT_EQ(refinement.update(all, dimmed, colour_of, indices), first_half);
+}
+
+}  // namespace unit_refinement_test
+}  // namespace walk::render::test
