@@ -62,4 +62,8 @@ RefineStep RefineSchedule::next() {
   return {};
 }
 
+void RefineSchedule::diagonals_unfinished() {
+  if (stage_ == RefineStage::Accumulating && sample_ == 0) stage_ = RefineStage::Diagonals;
+}
+
 }  // namespace walk::render

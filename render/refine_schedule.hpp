@@ -41,6 +41,9 @@ class RefineSchedule {
   void light_changed();
   // The step for this frame; advances the schedule.
   [[nodiscard]] RefineStep next();
+  // Called after a Diagonals step that did not finish every unit in its time slice: the next step is
+  // Diagonals again, and accumulation waits for the last (its samples must all show the same geometry).
+  void diagonals_unfinished();
   [[nodiscard]] const RefineSettings& settings() const { return settings_; }
   [[nodiscard]] RefineStage stage() const { return stage_; }
 

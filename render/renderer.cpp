@@ -48,6 +48,10 @@ constexpr int kCompactCodeUnit = 5;
 constexpr int kPolygonFirstUnit = 6;
 constexpr int kLevelsUnit = 7;
 
+// CPU time a still frame spends making diagonals and sub-quads before it is drawn (the rest wait for the
+// next frame): about half the 16.7 ms frame budget, so the refined frame with it stays near one frame.
+constexpr double kRefineSliceMs = 8.0;
+
 // A texture buffer of `format` over a new buffer object holding `bytes` of `data` (at least 4 bytes, so an
 // empty one is still a valid texture).
 void upload_texture_buffer(GLuint& buffer, GLuint& texture, GLenum format, const void* data,
@@ -437,7 +441,7 @@ struct Renderer::Impl {
   void warm_up(const View& view, int width, int height);
   std::pair<int, int> warmed_size{0, 0};
   void present(int width, int height) const;
-  void choose_diagonals();
+  void choose_diagonals(const View& view);
   void draw_map(const View& view, int width, int height);
   // Draws runs of `vao`'s ShadedVertex triangles with the shaded program.
   void draw_shaded(GLuint vao, std::span<const GLint> firsts, std::span<const GLsizei> counts,
@@ -746,6 +750,9 @@ float Renderer::glass_opacity() const {
 }
 const FrameStats& Renderer::last_stats() const {
   return impl_->stats;
+}
+RefineStage Renderer::schedule_stage() const {
+  return impl_->schedule.stage();
 }
 
 void Renderer::draw(const View& view, int width, int height) {
@@ -1070,9 +1077,11 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
   glViewport(0, 0, width, height);
 }
 
-// For the units the still view may draw (sight_units), each made once per mix (UnitRefinement); a vertex's
-// colour is computed here exactly as the vertex shader mixes it.
-void Renderer::Impl::choose_diagonals() {
+// For the units the still view may draw (sight_units), each made once per mix (UnitRefinement), nearest
+// first for up to kRefineSliceMs a frame; a vertex's colour is computed here exactly as the vertex shader
+// mixes it.
+void Renderer::Impl::choose_diagonals(const View& view) {
+  const auto start = std::chrono::steady_clock::now();
   const auto vertices = bundle.vertices();
   if (!refinement)
     refinement.emplace(RefinementInput{layout.fine.polygons, layout.unit_of_polygon, layout.units(), vertices,
@@ -1085,9 +1094,18 @@ void Renderer::Impl::choose_diagonals() {
   };
   const auto& settings = schedule.settings();
   const std::span<const std::uint32_t> units = *sight_units;
-  const std::vector<std::uint32_t> made =
-      refinement->update(units, {levels, settings.subdivision_error * exposure(), settings.subdivision_depth},
-                         colour_of, refined_indices);
+  std::vector<std::pair<float, std::uint32_t>> by_distance;
+  by_distance.reserve(units.size());
+  for (const std::uint32_t u : units)
+    if (u < layout.units()) by_distance.push_back({distance_to(glm::vec3(view.eye), layout.boxes[u]), u});
+  std::sort(by_distance.begin(), by_distance.end());
+  std::vector<std::uint32_t> nearest_first(by_distance.size());
+  for (std::size_t i = 0; i < by_distance.size(); ++i) nearest_first[i] = by_distance[i].second;
+  const UnitRefinement::Update update = refinement->update(
+      nearest_first, {levels, settings.subdivision_error * exposure(), settings.subdivision_depth}, colour_of,
+      refined_indices, [&] { return milliseconds_since(start) > kRefineSliceMs; });
+  if (!update.finished) schedule.diagonals_unfinished();
+  const std::vector<std::uint32_t>& made = update.made;
   const RefinementTotals totals = refinement->totals(units);
   stats.quads_flipped = totals.quads_flipped;
   stats.quads_subdivided = totals.quads_subdivided;
@@ -1181,7 +1199,7 @@ bool Renderer::refine(const View& view, int width, int height) {
   r.stats.stage = step.stage;
   if (!step.draws()) return false;  // converged: the picture shown is final, the CPU stays idle
 
-  if (step.stage == RefineStage::Diagonals) r.choose_diagonals();
+  if (step.stage == RefineStage::Diagonals) r.choose_diagonals(view);
   if (step.stage != RefineStage::Accumulating) {
     const bool moving = step.stage == RefineStage::Moving;
     const float resolution = moving && r.moving_level == MovingLevel::Reduced ? 0.5f : 1.0f;

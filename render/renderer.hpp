@@ -185,6 +185,8 @@ class Renderer {
   [[nodiscard]] const FrameGovernor& governor() const;
   [[nodiscard]] Image read_pixels(int width, int height) const;
   [[nodiscard]] const FrameStats& last_stats() const;
+  // The stage the next refine() takes if nothing changes (Diagonals again while clusters wait for theirs).
+  [[nodiscard]] RefineStage schedule_stage() const;
 
  private:
   struct Impl;

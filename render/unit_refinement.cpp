@@ -18,10 +18,10 @@ UnitRefinement::UnitRefinement(const RefinementInput& input)
     if (const std::uint32_t u = input.unit_of_polygon[p]; u < input.units) polygon_ids_[next[u]++] = p;
 }
 
-std::vector<std::uint32_t> UnitRefinement::update(std::span<const std::uint32_t> units,
-                                                  const RefinementKey& key,
-                                                  const std::function<glm::vec3(std::uint32_t)>& colour_of,
-                                                  std::span<std::uint32_t> refined_indices) {
+UnitRefinement::Update UnitRefinement::update(std::span<const std::uint32_t> units, const RefinementKey& key,
+                                              const std::function<glm::vec3(std::uint32_t)>& colour_of,
+                                              std::span<std::uint32_t> refined_indices,
+                                              const std::function<bool()>& out_of_time) {
   if (!keyed_ || key_ != key) {
     key_ = key;
     keyed_ = true;
@@ -30,13 +30,17 @@ std::vector<std::uint32_t> UnitRefinement::update(std::span<const std::uint32_t>
       unit.triangles = {};
     }
   }
-  std::vector<std::uint32_t> made;
+  Update out;
   for (const std::uint32_t u : units) {
     if (u >= units_.size() || units_[u].made) continue;
+    if (!out.made.empty() && out_of_time && out_of_time()) {
+      out.finished = false;
+      break;
+    }
     make(u, colour_of, refined_indices);
-    made.push_back(u);
+    out.made.push_back(u);
   }
-  return made;
+  return out;
 }
 
 void UnitRefinement::make(std::uint32_t u, const std::function<glm::vec3(std::uint32_t)>& colour_of,

@@ -43,13 +43,17 @@ class UnitRefinement {
  public:
   explicit UnitRefinement(const RefinementInput& input);
 
-  // Makes each of `units` (sorted or not) that is not yet made for `key`: its quads (found on first use),
-  // their diagonals by `colour_of` (a vertex's displayed radiosity) written into `refined_indices` (the fine
-  // form's layout), and its opaque quads' sub-quads. Returns the units made by this call, whose ranges of
-  // `refined_indices` changed.
-  std::vector<std::uint32_t> update(std::span<const std::uint32_t> units, const RefinementKey& key,
-                                    const std::function<glm::vec3(std::uint32_t)>& colour_of,
-                                    std::span<std::uint32_t> refined_indices);
+  struct Update {
+    std::vector<std::uint32_t> made;  // units made by this call: their ranges of refined indices changed
+    bool finished = true;             // every unit asked for is made
+  };
+  // Makes each of `units` not yet made for `key`, in the order given: its quads (found on first use), their
+  // diagonals by `colour_of` (a vertex's displayed radiosity) written into `refined_indices` (the fine
+  // form's layout), and its opaque quads' sub-quads. After each unit made, stops once `out_of_time` says
+  // so (when given), leaving the rest for the next call.
+  Update update(std::span<const std::uint32_t> units, const RefinementKey& key,
+                const std::function<glm::vec3(std::uint32_t)>& colour_of,
+                std::span<std::uint32_t> refined_indices, const std::function<bool()>& out_of_time = {});
 
   // The sub-quad triangles of `units` (made ones), concatenated in the order given, and each unit's run in
   // them, in vertices; every other unit's run is empty.

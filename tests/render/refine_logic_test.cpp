@@ -17,6 +17,27 @@
 namespace walk::render {
 namespace refine_logic_test {  // named, not anonymous: the suite compiles as unity batches
 
+// A Diagonals step that ran out of its time slice is followed by another; accumulation starts after the
+// one that finishes.
+TEST(RefineSchedule, UnfinishedDiagonalsRepeatBeforeAccumulation) {
+  RefineSchedule schedule({.blend_steps = 0, .aa_samples = 2});
+  schedule.view_changed(1.0f);
+  EXPECT_EQ(schedule.next().stage, RefineStage::Moving);
+  for (int k = 0; k < 3; ++k) {
+    const RefineStep step = schedule.next();
+    ASSERT_EQ(step.stage, RefineStage::Diagonals) << k;
+    EXPECT_TRUE(step.diagonals);
+    schedule.diagonals_unfinished();
+  }
+  EXPECT_EQ(schedule.next().stage, RefineStage::Diagonals);
+  const RefineStep first = schedule.next();
+  EXPECT_EQ(first.stage, RefineStage::Accumulating);
+  EXPECT_EQ(first.sample, 0);
+  schedule.diagonals_unfinished();  // too late: accumulation has begun and its samples keep their geometry
+  EXPECT_EQ(schedule.next().sample, 1);
+  EXPECT_FALSE(schedule.next().draws());
+}
+
 TEST(RefineSchedule, MovingThenBlendThenSamplesThenIdle) {
   RefineSchedule schedule({.blend_steps = 50, .aa_samples = 8});
   schedule.view_changed(0.0f);

@@ -84,7 +84,7 @@ TEST(UnitRefinement, UnitsMadeAloneEqualTheWholeModelsChoice) {
     return f.colour[v];
   };
   const RefinementKey key{f.levels, kThreshold, kDepth};
-  EXPECT_EQ(refinement.update(first_half, key, colour_of, indices), first_half);
+  EXPECT_EQ(refinement.update(first_half, key, colour_of, indices).made, first_half);
   for (const std::uint32_t u : first_half)
     EXPECT_EQ(unit_indices(f, u, indices), unit_indices(f, u, whole)) << u;
   for (const std::uint32_t u : second_half)
@@ -93,9 +93,9 @@ TEST(UnitRefinement, UnitsMadeAloneEqualTheWholeModelsChoice) {
   EXPECT_GT(first_calls, 0);
   EXPECT_LT(first_calls, int(4 * quads.size())) << "only the first half's vertices are coloured";
 
-  EXPECT_TRUE(refinement.update(first_half, key, colour_of, indices).empty()) << "made once per mix";
+  EXPECT_TRUE(refinement.update(first_half, key, colour_of, indices).made.empty()) << "made once per mix";
   EXPECT_EQ(calls, first_calls);
-  EXPECT_EQ(refinement.update(all, key, colour_of, indices), second_half);
+  EXPECT_EQ(refinement.update(all, key, colour_of, indices).made, second_half);
   EXPECT_EQ(indices, whole);
   const RefinementTotals totals = refinement.totals(all);
   EXPECT_EQ(totals.quads_flipped, flipped);
@@ -115,9 +115,31 @@ TEST(UnitRefinement, UnitsMadeAloneEqualTheWholeModelsChoice) {
 
   // A new mix makes each unit again when it is next asked for.
   const RefinementKey dimmed{{1.0f, 0.2f}, kThreshold, kDepth};
-  EXPECT_EQ(refinement.update(second_half, dimmed, colour_of, indices), second_half);
+  EXPECT_EQ(refinement.update(second_half, dimmed, colour_of, indices).made, second_half);
   EXPECT_EQ(refinement.totals(first_half).subdivision_triangles, 0u) << "the first half is not made for it";
-  EXPECT_EQ(refinement.update(all, dimmed, colour_of, indices), first_half);
+  EXPECT_EQ(refinement.update(all, dimmed, colour_of, indices).made, first_half);
+}
+
+// Out of time after every unit: each call makes one more, in the order asked, until all are made; the result
+// is the same as making them at once.
+TEST(UnitRefinement, ATimeSliceMakesAtLeastOneUnitACallInOrder) {
+  const Fixture f = rooms({1.0f, 0.7f});
+  std::vector<std::uint32_t> order(f.layout.units());
+  std::iota(order.rbegin(), order.rend(), 0u);  // last unit first
+  const RefinementKey key{f.levels, 0.01f, 3};
+  const auto colour_of = [&](std::uint32_t v) { return f.colour[v]; };
+  UnitRefinement sliced(input_of(f)), at_once(input_of(f));
+  std::vector<std::uint32_t> sliced_indices = f.layout.fine.indices, at_once_indices = f.layout.fine.indices;
+  ASSERT_TRUE(at_once.update(order, key, colour_of, at_once_indices).finished);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const UnitRefinement::Update step =
+        sliced.update(order, key, colour_of, sliced_indices, [] { return true; });
+    ASSERT_EQ(step.made, std::vector<std::uint32_t>{order[k]}) << k;
+    EXPECT_EQ(step.finished, k + 1 == order.size()) << k;
+  }
+  EXPECT_TRUE(sliced.update(order, key, colour_of, sliced_indices, [] { return true; }).finished);
+  EXPECT_EQ(sliced_indices, at_once_indices);
+  EXPECT_EQ(sliced.totals(order).subdivision_triangles, at_once.totals(order).subdivision_triangles);
 }
 
 }  // namespace unit_refinement_test
