@@ -16,6 +16,9 @@ struct RefineSettings {
   // at most `subdivision_depth` times (each level quarters the twist). 0 depth: no subdivision.
   float subdivision_error = 0.01f;
   int subdivision_depth = 3;
+  // CPU time a still frame spends making diagonals and sub-quads before it is drawn, the rest left for the
+  // next frames: about half the 16.7 ms frame budget. 0: all in one frame (tests that count frames).
+  double diagonal_slice_ms = 8.0;
 };
 
 // Relit: the view is still and the dimmers moved; the new mix as a plain patch frame (the bundle's

@@ -48,10 +48,6 @@ constexpr int kCompactCodeUnit = 5;
 constexpr int kPolygonFirstUnit = 6;
 constexpr int kLevelsUnit = 7;
 
-// CPU time a still frame spends making diagonals and sub-quads before it is drawn (the rest wait for the
-// next frame): about half the 16.7 ms frame budget, so the refined frame with it stays near one frame.
-constexpr double kRefineSliceMs = 8.0;
-
 // A texture buffer of `format` over a new buffer object holding `bytes` of `data` (at least 4 bytes, so an
 // empty one is still a valid texture).
 void upload_texture_buffer(GLuint& buffer, GLuint& texture, GLenum format, const void* data,
@@ -1078,8 +1074,8 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
 }
 
 // For the units the still view may draw (sight_units), each made once per mix (UnitRefinement), nearest
-// first for up to kRefineSliceMs a frame; a vertex's colour is computed here exactly as the vertex shader
-// mixes it.
+// first for up to RefineSettings::diagonal_slice_ms a frame; a vertex's colour is computed here exactly as
+// the vertex shader mixes it.
 void Renderer::Impl::choose_diagonals(const View& view) {
   const auto start = std::chrono::steady_clock::now();
   const auto vertices = bundle.vertices();
@@ -1103,7 +1099,9 @@ void Renderer::Impl::choose_diagonals(const View& view) {
   for (std::size_t i = 0; i < by_distance.size(); ++i) nearest_first[i] = by_distance[i].second;
   const UnitRefinement::Update update = refinement->update(
       nearest_first, {levels, settings.subdivision_error * exposure(), settings.subdivision_depth}, colour_of,
-      refined_indices, [&] { return milliseconds_since(start) > kRefineSliceMs; });
+      refined_indices, [&] {
+        return settings.diagonal_slice_ms > 0.0 && milliseconds_since(start) > settings.diagonal_slice_ms;
+      });
   if (!update.finished) schedule.diagonals_unfinished();
   const std::vector<std::uint32_t>& made = update.made;
   const RefinementTotals totals = refinement->totals(units);

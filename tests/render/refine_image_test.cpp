@@ -196,7 +196,9 @@ TEST_P(RefineImageTest, IdleRendererDrawsNothingUntilSomethingChanges) {
   TwoRooms scene;
   auto bundle = open_two_rooms(scene, "idle");
   Renderer renderer(*bundle);
-  renderer.set_refine_settings({.blend_steps = 5, .aa_samples = 4, .samples_per_frame = 1});
+  // Diagonals in one frame however slow the machine, so the frames can be counted.
+  renderer.set_refine_settings(
+      {.blend_steps = 5, .aa_samples = 4, .samples_per_frame = 1, .diagonal_slice_ms = 0.0});
   renderer.set_moving_level(MovingLevel::Coarse);
   const View view = looking_along_x(+1.0);
   int steps = 0;
