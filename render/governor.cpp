@@ -114,4 +114,9 @@ int FrameGovernor::samples_per_frame() const {
   return std::clamp(int(kHeadroom * budget_ms_ / sample_ms_), 1, 64);
 }
 
+double FrameGovernor::still_slice_ms(double cap) const {
+  if (!(sample_ms_ > 0.0)) return cap;
+  return std::clamp(kHeadroom * budget_ms_ - sample_ms_, std::min(kMinSliceMs, cap), cap);
+}
+
 }  // namespace walk::render

@@ -62,6 +62,11 @@ class FrameGovernor {
   static constexpr double kModelSpread = 2.0;
   // While still: how many accumulation samples fit in one frame (at least 1).
   [[nodiscard]] int samples_per_frame() const;
+  // While still: the CPU time a frame may spend before it draws (a stop's diagonals and sub-quads) and still
+  // fit the budget with one sample's drawing: the budget (less its headroom) less a sample's measured time,
+  // at most `cap` and at least kMinSliceMs (or `cap` if smaller); `cap` while no sample was measured.
+  [[nodiscard]] double still_slice_ms(double cap) const;
+  static constexpr double kMinSliceMs = 1.0;  // some progress every frame, however slow the drawing
   // Estimate in ms, or a negative number when never measured.
   [[nodiscard]] double estimate(std::uint32_t cell, MovingLevel level) const;
 

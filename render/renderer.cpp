@@ -267,7 +267,7 @@ struct Renderer::Impl {
   std::optional<View> shown_view;
   int shown_width = 0, shown_height = 0;
   std::vector<float> shown_levels;
-  std::optional<UnitRefinement> refinement;    // made on first use
+  std::optional<UnitRefinement> refinement;    // made with the layout: its polygons by unit, once
   std::vector<std::uint32_t> refined_indices;  // INDX with colour-chosen diagonals
   bool restart = true;  // settings changed or draw() overwrote the picture: start again as if moved
 
@@ -533,6 +533,8 @@ Renderer::Renderer(const model::Bundle& bundle, DisplayLightForm light_form)
     r.coarse_pass.emplace("coarse scene", with_flat_light(kLightMixerVertexShader),
                           with_flat_light(kTonemapFragmentShader));
   r.every_unit = all_units(r.layout);
+  r.refinement.emplace(RefinementInput{r.layout.fine.polygons, r.layout.unit_of_polygon, r.layout.units(),
+                                       vertices, r.layout.fine.indices});
   r.cell_units.resize(bundle.cells().size());
   if (!bundle.portals().empty())
     r.portal_view.emplace(bundle.portals(), bundle.nodes(), bundle.cells().size(), r.layout.boxes);
@@ -683,7 +685,7 @@ void Renderer::set_pvs_culling(bool enabled) {
 }
 void Renderer::set_refine_settings(const RefineSettings& settings) {
   impl_->schedule = RefineSchedule(settings);
-  impl_->refinement.reset();  // every unit found and made again at the next stop
+  impl_->refinement->forget();  // every unit found and made again at the next stop
   impl_->jitter = jitter_pattern(impl_->schedule.settings().aa_samples);
   impl_->restart = true;
 }
@@ -1074,14 +1076,12 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
 }
 
 // For the units the still view may draw (sight_units), each made once per mix (UnitRefinement), nearest
-// first for up to RefineSettings::diagonal_slice_ms a frame; a vertex's colour is computed here exactly as
+// first for as long a frame as leaves time to draw it (FrameGovernor::still_slice_ms, at most
+// RefineSettings::diagonal_slice_ms); a vertex's colour is computed here exactly as
 // the vertex shader mixes it.
 void Renderer::Impl::choose_diagonals(const View& view) {
   const auto start = std::chrono::steady_clock::now();
   const auto vertices = bundle.vertices();
-  if (!refinement)
-    refinement.emplace(RefinementInput{layout.fine.polygons, layout.unit_of_polygon, layout.units(), vertices,
-                                       layout.fine.indices});
   if (refined_indices.empty()) refined_indices = layout.fine.indices;
   const float ambient = bundle.meta().ambient;
   const auto colour_of = [&](std::uint32_t v) {
@@ -1099,8 +1099,8 @@ void Renderer::Impl::choose_diagonals(const View& view) {
   for (std::size_t i = 0; i < by_distance.size(); ++i) nearest_first[i] = by_distance[i].second;
   const UnitRefinement::Update update = refinement->update(
       nearest_first, {levels, settings.subdivision_error * exposure(), settings.subdivision_depth}, colour_of,
-      refined_indices, [&] {
-        return settings.diagonal_slice_ms > 0.0 && milliseconds_since(start) > settings.diagonal_slice_ms;
+      refined_indices, [&, slice = governor.still_slice_ms(settings.diagonal_slice_ms)] {
+        return settings.diagonal_slice_ms > 0.0 && milliseconds_since(start) > slice;
       });
   if (!update.finished) schedule.diagonals_unfinished();
   const std::vector<std::uint32_t>& made = update.made;

@@ -86,6 +86,11 @@ void UnitRefinement::gather(std::span<const std::uint32_t> units, std::vector<Sh
   }
 }
 
+void UnitRefinement::forget() {
+  for (Unit& unit : units_) unit = Unit{};
+  keyed_ = false;
+}
+
 RefinementTotals UnitRefinement::totals(std::span<const std::uint32_t> units) const {
   RefinementTotals out;
   for (const std::uint32_t u : units) {

@@ -62,6 +62,10 @@ class UnitRefinement {
 
   [[nodiscard]] RefinementTotals totals(std::span<const std::uint32_t> units) const;
 
+  // Forgets every unit's quads and what was made from them (new refine settings): the next update finds and
+  // makes each again.
+  void forget();
+
  private:
   struct Unit {
     bool quads_found = false;

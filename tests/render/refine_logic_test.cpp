@@ -17,6 +17,24 @@
 namespace walk::render {
 namespace refine_logic_test {  // named, not anonymous: the suite compiles as unity batches
 
+// A still frame's slice for diagonals and sub-quads leaves time to draw it: the cap before any sample is
+// measured or when drawing is quick, the budget's rest after a slow sample, and never nothing.
+TEST(FrameGovernor, StillSliceLeavesTimeToDrawTheFrame) {
+  FrameGovernor governor(60.0);
+  EXPECT_EQ(governor.still_slice_ms(8.0), 8.0) << "no sample measured yet";
+  governor.record_sample(1.0);
+  EXPECT_EQ(governor.still_slice_ms(8.0), 8.0) << "a quick sample leaves the cap";
+  FrameGovernor slow(60.0);
+  slow.record_sample(11.5);  // the generated L building's 16-sample still view
+  const double slice = slow.still_slice_ms(8.0);
+  EXPECT_LT(slice, 8.0);
+  EXPECT_NEAR(slice + 11.5, 0.9 * 1000.0 / 60.0, 1e-9) << "the slice and the sample fill the budget's 90 %";
+  FrameGovernor slower(60.0);
+  slower.record_sample(40.0);
+  EXPECT_EQ(slower.still_slice_ms(8.0), FrameGovernor::kMinSliceMs);
+  EXPECT_EQ(slower.still_slice_ms(0.5), 0.5) << "a cap below the least slice wins";
+}
+
 // A Diagonals step that ran out of its time slice is followed by another; accumulation starts after the
 // one that finishes.
 TEST(RefineSchedule, UnfinishedDiagonalsRepeatBeforeAccumulation) {

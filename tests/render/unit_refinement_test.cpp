@@ -118,6 +118,9 @@ TEST(UnitRefinement, UnitsMadeAloneEqualTheWholeModelsChoice) {
   EXPECT_EQ(refinement.update(second_half, dimmed, colour_of, indices).made, second_half);
   EXPECT_EQ(refinement.totals(first_half).subdivision_triangles, 0u) << "the first half is not made for it";
   EXPECT_EQ(refinement.update(all, dimmed, colour_of, indices).made, first_half);
+  refinement.forget();
+  EXPECT_EQ(refinement.totals(all).quads_flipped, 0u);
+  EXPECT_EQ(refinement.update(all, dimmed, colour_of, indices).made, all) << "forgotten: every unit again";
 }
 
 // Out of time after every unit: each call makes one more, in the order asked, until all are made; the result
