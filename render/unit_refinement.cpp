@@ -22,9 +22,8 @@ UnitRefinement::Update UnitRefinement::update(std::span<const std::uint32_t> uni
                                               const std::function<glm::vec3(std::uint32_t)>& colour_of,
                                               std::span<std::uint32_t> refined_indices,
                                               const std::function<bool()>& out_of_time) {
-  if (!keyed_ || key_ != key) {
+  if (key_ != key) {
     key_ = key;
-    keyed_ = true;
     for (Unit& unit : units_) {
       unit.made = false;
       unit.triangles = {};
@@ -68,7 +67,7 @@ void UnitRefinement::make(std::uint32_t u, const std::function<glm::vec3(std::ui
   std::vector<Quad> opaque;
   for (const Quad& q : unit.quads)
     if (input_.polygons[q.polygon].role != std::uint32_t(model::Role::Glass)) opaque.push_back(q);
-  Subdivision sub = subdivide(opaque, input_.vertices, colour, key_.threshold, key_.max_depth);
+  Subdivision sub = subdivide(opaque, input_.vertices, colour, key_->threshold, key_->max_depth);
   unit.subdivided = std::uint32_t(sub.replaced_quads.size());
   unit.triangles = std::move(sub.triangles);
   unit.made = true;
@@ -88,7 +87,7 @@ void UnitRefinement::gather(std::span<const std::uint32_t> units, std::vector<Sh
 
 void UnitRefinement::forget() {
   for (Unit& unit : units_) unit = Unit{};
-  keyed_ = false;
+  key_.reset();
 }
 
 RefinementTotals UnitRefinement::totals(std::span<const std::uint32_t> units) const {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <glm/vec3.hpp>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -80,8 +81,7 @@ class UnitRefinement {
   RefinementInput input_;
   std::vector<std::uint32_t> polygon_first_, polygon_ids_;  // per unit, its polygons (ids in order)
   std::vector<Unit> units_;
-  RefinementKey key_;
-  bool keyed_ = false;
+  std::optional<RefinementKey> key_;  // what the made units were made for; none before the first update
   // Per vertex, written for the vertices of the quads being made only (the diagonal choice and the
   // subdivision index colour by vertex): left uninitialised, so a model's untouched pages cost nothing.
   std::unique_ptr<glm::vec3[]> colour_;
