@@ -470,7 +470,7 @@ CellsStageCounts compute_cells(model::BundleContents& out, const VisibilityConfi
   if (r.seeded && !r.leaks.empty())
     for (const auto& p : r.leaks.front().points)
       out.leak_path.push_back({float(p.x), float(p.y), float(p.z)});
-  const DrawOrderCounts order = order_for_cells(out);
+  const DrawOrderCounts order = order_for_cells(out, config.threads);
   return {out.polygons.size(), out.cells.size(),
           std::string(pvs_method_name(config.method)) + ": " + r.summary() +
               fmt::format("; draw ranges {} -> {} over all cells", order.ranges_before, order.ranges_after)};

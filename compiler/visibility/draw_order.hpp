@@ -14,11 +14,13 @@ struct DrawOrderCounts {
   std::uint64_t ranges_after = 0;
 };
 
-// Ranges the renderer would draw for every cell's PVS with the bundle as it is.
-[[nodiscard]] std::uint64_t count_draw_ranges(const model::BundleContents& bundle);
+// Ranges the renderer would draw for every cell's PVS with the bundle as it is (cells on up to `threads`
+// threads, 0: all cores).
+[[nodiscard]] std::uint64_t count_draw_ranges(const model::BundleContents& bundle, unsigned threads = 0);
 
 // Sorts polygons by the set of cells whose PVS holds them, in Gray-code order (glass last, as it is drawn
 // apart; cells in tree order), and rewrites INDX and CIDX in that order. Needs out.cells and out.pvs filled.
-DrawOrderCounts order_for_cells(model::BundleContents& out);
+// A cluster's polygons share its membership, so with clusters the keys are made per cluster.
+DrawOrderCounts order_for_cells(model::BundleContents& out, unsigned threads = 0);
 
 }  // namespace walk::compiler
