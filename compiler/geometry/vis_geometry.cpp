@@ -131,34 +131,40 @@ void separating_planes(const Winding& source, const Winding& pass, bool flip, st
   constexpr double kMinNormal = 1e-10;
   const std::size_t ns = source.size(), np = pass.size();
   if (ns < 2 || np == 0) return;
+  // Each candidate is judged with its normal c unnormalised, by the signed distances dot(c, x - a), which are
+  // its plane's distances times |c|: "beyond kPlaneEpsilon" is then d^2 > kPlaneEpsilon^2 |c|^2 on the side
+  // of d's sign. Most candidates fail, and they cost no square root or division; the planes kept are
+  // normalised as before. (The portal flow spent 44 % of its time here on the generated M building.)
+  constexpr double kEpsilonSquared = kPlaneEpsilon * kPlaneEpsilon;
   for (std::size_t i = 0; i < ns; ++i) {
     const model::Vec3& a = source[i];
     const model::Vec3& b = source[(i + 1) % ns];
     if (ns == 2 && i == 1) break;
+    const model::Vec3 edge = b - a;
     for (std::size_t j = 0; j < np; ++j) {
-      const model::Vec3 c = glm::cross(b - a, pass[j] - a);
-      const double len = glm::length(c);
-      if (len < kMinNormal) continue;
-      Plane pl{c / len, -glm::dot(c / len, a)};
+      model::Vec3 c = glm::cross(edge, pass[j] - a);
+      const double len2 = glm::dot(c, c);
+      if (len2 < kMinNormal * kMinNormal) continue;
+      const double tolerance2 = kEpsilonSquared * len2;
       // Source behind: find a source point off the plane to decide the orientation.
       int side = 0;
       for (std::size_t k = 0; k < ns && side == 0; ++k) {
-        const double d = pl.distance(source[k]);
-        if (d < -kPlaneEpsilon)
-          side = -1;
-        else if (d > kPlaneEpsilon)
-          side = 1;
+        const double d = glm::dot(c, source[k] - a);
+        if (d * d > tolerance2) side = d < 0.0 ? -1 : 1;
       }
       if (side == 0) continue;  // the plane holds the whole source
-      if (side > 0) pl = pl.flipped();
+      if (side > 0) c = -c;
       // Pass wholly in front, or it does not separate.
       bool separates = true, off_plane = false;
       for (std::size_t k = 0; k < np && separates; ++k) {
-        const double d = pl.distance(pass[k]);
-        if (d < -kPlaneEpsilon) separates = false;
-        off_plane |= d > kPlaneEpsilon;
+        const double d = glm::dot(c, pass[k] - a);
+        const bool beyond = d * d > tolerance2;
+        if (beyond && d < 0.0) separates = false;
+        off_plane |= beyond && d > 0.0;
       }
       if (!separates || !off_plane) continue;  // pass behind in part, or wholly in the plane
+      const model::Vec3 n = c / std::sqrt(len2);
+      const Plane pl{n, -glm::dot(n, a)};
       out.push_back(flip ? pl.flipped() : pl);
     }
   }

@@ -1,6 +1,8 @@
 // Degenerate cases of the geometric predicates under the visibility stages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <glm/geometric.hpp>
 
 #include "compiler/geometry/vis_geometry.hpp"
@@ -116,6 +118,29 @@ TEST(VisibilityPredicates, SeparatorsOfCoplanarOrDegeneratePortalsAreNone) {
   EXPECT_TRUE(seps.empty());
   separating_planes(kSquare, Winding{}, false, seps);
   EXPECT_TRUE(seps.empty());
+}
+
+// A pass corner just behind a separator: within kPlaneEpsilon (metres, whatever the portals' size, since the
+// candidates are judged unnormalised) it counts as on the plane and the plane separates; past it, not.
+TEST(VisibilityPredicates, SeparatorToleranceIsInMetresAtAnyScale) {
+  for (const double scale : {1.0, 1000.0}) {
+    for (const double behind : {0.5 * kPlaneEpsilon, 4.0 * kPlaneEpsilon}) {
+      const Winding source{{0, 0, 0}, {scale, 0, 0}, {scale, scale, 0}, {0, scale, 0}};
+      // The plane through the source's edge x = scale and the pass corner (0, 0, scale) is x + z = scale;
+      // the corner (0, scale, scale) is moved `behind` metres behind it.
+      const double dz = behind * std::sqrt(2.0);
+      const Winding pass{{0, 0, scale}, {scale, 0, scale}, {scale, scale, scale}, {0, scale, scale - dz}};
+      std::vector<Plane> seps;
+      separating_planes(source, pass, false, seps);
+      const bool found = std::any_of(seps.begin(), seps.end(), [&](const Plane& p) {
+        return std::abs(p.distance({scale, 0, 0})) < 1e-9 * scale &&
+               std::abs(p.distance({scale, scale, 0})) < 1e-9 * scale &&
+               std::abs(p.distance({0, 0, scale})) < 1e-9 * scale;
+      });
+      EXPECT_EQ(found, behind < kPlaneEpsilon) << "scale " << scale << ", behind " << behind;
+      for (const auto& p : seps) EXPECT_NEAR(glm::length(p.n), 1.0, 1e-12);
+    }
+  }
 }
 
 TEST(VisibilityPredicates, FacesAwayFromABox) {
