@@ -22,6 +22,7 @@ FrameGovernor::FrameGovernor(double target_hz)
 
 void FrameGovernor::record_moving(std::uint32_t cell, MovingLevel level, double ms, double triangles) {
   if (!(ms >= 0.0) || !std::isfinite(ms)) return;
+  last_moving_ms_ = ms;
   if (triangles >= 0.0 && std::isfinite(triangles)) {
     LineFit& f = models_[std::size_t(level)];
     const double predicted = predict(level, triangles);
@@ -114,9 +115,19 @@ int FrameGovernor::samples_per_frame() const {
   return std::clamp(int(kHeadroom * budget_ms_ / sample_ms_), 1, 64);
 }
 
+double FrameGovernor::expected_sample_ms() const {
+  if (sample_ms_ > 0.0) return sample_ms_;
+  // No sample yet: a sample draws the full-detail level, whose frames' mean is the nearest measure; else the
+  // last moving frame, which drew no more than a sample will.
+  const LineFit& full = models_[std::size_t(MovingLevel::Patches)];
+  if (full.n > 0.0) return std::max(full.m / full.n, last_moving_ms_);
+  return last_moving_ms_;
+}
+
 double FrameGovernor::still_slice_ms(double cap) const {
-  if (!(sample_ms_ > 0.0)) return cap;
-  return std::clamp(kHeadroom * budget_ms_ - sample_ms_, std::min(kMinSliceMs, cap), cap);
+  const double sample = expected_sample_ms();
+  if (!(sample > 0.0)) return cap;
+  return std::clamp(kHeadroom * budget_ms_ - sample, std::min(kMinSliceMs, cap), cap);
 }
 
 }  // namespace walk::render

@@ -21,7 +21,7 @@ namespace refine_logic_test {  // named, not anonymous: the suite compiles as un
 // measured or when drawing is quick, the budget's rest after a slow sample, and never nothing.
 TEST(FrameGovernor, StillSliceLeavesTimeToDrawTheFrame) {
   FrameGovernor governor(60.0);
-  EXPECT_EQ(governor.still_slice_ms(8.0), 8.0) << "no sample measured yet";
+  EXPECT_EQ(governor.still_slice_ms(8.0), 8.0) << "nothing measured yet";
   governor.record_sample(1.0);
   EXPECT_EQ(governor.still_slice_ms(8.0), 8.0) << "a quick sample leaves the cap";
   FrameGovernor slow(60.0);
@@ -33,6 +33,29 @@ TEST(FrameGovernor, StillSliceLeavesTimeToDrawTheFrame) {
   slower.record_sample(40.0);
   EXPECT_EQ(slower.still_slice_ms(8.0), FrameGovernor::kMinSliceMs);
   EXPECT_EQ(slower.still_slice_ms(0.5), 0.5) << "a cap below the least slice wins";
+}
+
+// Before the first still sample, the slice leaves time for what the moving frames showed drawing costs: the
+// full-detail level's mean, or the last moving frame when no full-detail frame was drawn (or it was slower).
+TEST(FrameGovernor, FirstStopSliceFollowsTheMovingFrames) {
+  const double budget = 0.9 * 1000.0 / 60.0;  // the budget less its headroom
+  FrameGovernor governor(60.0);
+  EXPECT_LT(governor.expected_sample_ms(), 0.0);
+  governor.record_moving(0, MovingLevel::Coarse, 12.0);
+  EXPECT_DOUBLE_EQ(governor.expected_sample_ms(), 12.0);
+  EXPECT_NEAR(governor.still_slice_ms(8.0), budget - 12.0, 1e-9);
+  for (int k = 0; k < 4; ++k) {
+    governor.record_moving(1, MovingLevel::Patches, 13.0, 1000.0);
+    governor.record_moving(1, MovingLevel::Patches, 14.0, 1000.0);
+  }
+  governor.record_moving(2, MovingLevel::Reduced, 4.0);
+  EXPECT_NEAR(governor.expected_sample_ms(), 13.5, 0.01)
+      << "the full-detail mean (decayed), not the cheap last frame";
+  EXPECT_NEAR(governor.still_slice_ms(8.0), budget - 13.5, 0.01);
+  governor.record_moving(2, MovingLevel::Coarse, 30.0);
+  EXPECT_EQ(governor.still_slice_ms(8.0), FrameGovernor::kMinSliceMs) << "a slower last frame counts";
+  governor.record_sample(2.0);
+  EXPECT_EQ(governor.still_slice_ms(8.0), 8.0) << "a measured sample replaces the guess";
 }
 
 // A Diagonals step that ran out of its time slice is followed by another; accumulation starts after the
