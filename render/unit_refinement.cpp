@@ -6,8 +6,8 @@
 
 namespace walk::render {
 
-UnitRefinement::UnitRefinement(const RefinementInput& input)
-    : input_(input), polygon_first_(input.units + 1, 0), units_(input.units) {
+UnitRefinement::UnitRefinement(const RefinementInput& input, std::size_t kept_bytes)
+    : input_(input), polygon_first_(input.units + 1, 0), units_(input.units), kept_limit_(kept_bytes) {
   // A counting sort of polygon ids by unit: each unit's polygons in id order.
   for (const std::uint32_t u : input.unit_of_polygon)
     if (u < input.units) ++polygon_first_[u + 1];
@@ -24,11 +24,17 @@ UnitRefinement::Update UnitRefinement::update(std::span<const std::uint32_t> uni
                                               const std::function<bool()>& out_of_time) {
   if (key_ != key) {
     key_ = key;
-    for (Unit& unit : units_) {
+    for (const std::uint32_t u : keeping_) {
+      Unit& unit = units_[u];
+      kept_bytes_ -= unit.bytes();
       unit.made = false;
       unit.triangles = {};
+      kept_bytes_ += unit.bytes();
     }
   }
+  ++updates_;
+  for (const std::uint32_t u : units)
+    if (u < units_.size()) units_[u].seen = updates_;
   Update out;
   for (const std::uint32_t u : units) {
     if (u >= units_.size() || units_[u].made) continue;
@@ -39,17 +45,40 @@ UnitRefinement::Update UnitRefinement::update(std::span<const std::uint32_t> uni
     make(u, colour_of, refined_indices);
     out.made.push_back(u);
   }
+  if (kept_bytes_ > kept_limit_) let_go_of_unseen();
   return out;
+}
+
+void UnitRefinement::release(Unit& unit) {
+  kept_bytes_ -= unit.bytes();
+  const std::uint64_t seen = unit.seen;
+  unit = Unit{};
+  unit.seen = seen;
+}
+
+void UnitRefinement::let_go_of_unseen() {
+  // Oldest sight first; the units of this update's sight keep theirs whatever they hold.
+  std::sort(keeping_.begin(), keeping_.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return units_[a].seen < units_[b].seen; });
+  std::size_t k = 0;
+  for (; k < keeping_.size() && kept_bytes_ > kept_limit_; ++k) {
+    Unit& unit = units_[keeping_[k]];
+    if (unit.seen == updates_) break;
+    release(unit);
+  }
+  keeping_.erase(keeping_.begin(), keeping_.begin() + std::ptrdiff_t(k));
 }
 
 void UnitRefinement::make(std::uint32_t u, const std::function<glm::vec3(std::uint32_t)>& colour_of,
                           std::span<std::uint32_t> refined_indices) {
   Unit& unit = units_[u];
+  kept_bytes_ -= unit.bytes();
   if (!unit.quads_found) {
     const std::span<const std::uint32_t> ids(polygon_ids_.data() + polygon_first_[u],
                                              polygon_first_[u + 1] - polygon_first_[u]);
     unit.quads = find_quads(input_.polygons, ids, input_.indices, input_.vertices);
     unit.quads_found = true;
+    keeping_.push_back(u);
   }
   const std::size_t vertices = input_.vertices.size();
   if (!colour_) colour_ = std::make_unique_for_overwrite<glm::vec3[]>(vertices);
@@ -71,6 +100,7 @@ void UnitRefinement::make(std::uint32_t u, const std::function<glm::vec3(std::ui
   unit.subdivided = std::uint32_t(sub.replaced_quads.size());
   unit.triangles = std::move(sub.triangles);
   unit.made = true;
+  kept_bytes_ += unit.bytes();
 }
 
 void UnitRefinement::gather(std::span<const std::uint32_t> units, std::vector<ShadedVertex>& triangles,
@@ -87,6 +117,8 @@ void UnitRefinement::gather(std::span<const std::uint32_t> units, std::vector<Sh
 
 void UnitRefinement::forget() {
   for (Unit& unit : units_) unit = Unit{};
+  keeping_.clear();
+  kept_bytes_ = 0;
   key_.reset();
 }
 

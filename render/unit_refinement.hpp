@@ -40,9 +40,15 @@ struct RefinementTotals {
   std::uint32_t quads_flipped = 0, quads_subdivided = 0, subdivision_triangles = 0;
 };
 
+// What the units not in the last sight may keep of their quads and sub-quads (bytes): past it the units
+// seen longest ago let theirs go, and are made again when next seen. The generated L building's largest
+// sight (a PVS of 65,136 sub-quad triangles) keeps about 7 MB; without a bound a long tour kept every
+// cluster's, up to about 300 MB.
+inline constexpr std::size_t kKeptRefinementBytes = std::size_t(64) << 20;
+
 class UnitRefinement {
  public:
-  explicit UnitRefinement(const RefinementInput& input);
+  explicit UnitRefinement(const RefinementInput& input, std::size_t kept_bytes = kKeptRefinementBytes);
 
   struct Update {
     std::vector<std::uint32_t> made;  // units made by this call: their ranges of refined indices changed
@@ -51,7 +57,8 @@ class UnitRefinement {
   // Makes each of `units` not yet made for `key`, in the order given: its quads (found on first use), their
   // diagonals by `colour_of` (a vertex's displayed radiosity) written into `refined_indices` (the fine
   // form's layout), and its opaque quads' sub-quads. After each unit made, stops once `out_of_time` says
-  // so (when given), leaving the rest for the next call.
+  // so (when given), leaving the rest for the next call. `units` are the sight: then, while what the units
+  // keep is over the bound, units outside it let theirs go, those seen longest ago first.
   Update update(std::span<const std::uint32_t> units, const RefinementKey& key,
                 const std::function<glm::vec3(std::uint32_t)>& colour_of,
                 std::span<std::uint32_t> refined_indices, const std::function<bool()>& out_of_time = {});
@@ -67,6 +74,9 @@ class UnitRefinement {
   // makes each again.
   void forget();
 
+  // Bytes the units keep now (quads and sub-quad triangles).
+  [[nodiscard]] std::size_t kept_bytes() const { return kept_bytes_; }
+
  private:
   struct Unit {
     bool quads_found = false;
@@ -74,14 +84,24 @@ class UnitRefinement {
     std::vector<Quad> quads;
     std::vector<ShadedVertex> triangles;  // its sub-quads' triangles, three vertices each
     std::uint32_t flipped = 0, subdivided = 0;
+    std::uint64_t seen = 0;  // the last update whose sight held it
+    [[nodiscard]] std::size_t bytes() const {
+      return quads.size() * sizeof(Quad) + triangles.size() * sizeof(ShadedVertex);
+    }
   };
   void make(std::uint32_t u, const std::function<glm::vec3(std::uint32_t)>& colour_of,
             std::span<std::uint32_t> refined_indices);
+  // Lets units not seen in this update drop what they keep, oldest first, until within the bound.
+  void let_go_of_unseen();
+  void release(Unit& unit);
 
   RefinementInput input_;
   std::vector<std::uint32_t> polygon_first_, polygon_ids_;  // per unit, its polygons (ids in order)
   std::vector<Unit> units_;
   std::optional<RefinementKey> key_;  // what the made units were made for; none before the first update
+  std::size_t kept_limit_ = 0, kept_bytes_ = 0;
+  std::vector<std::uint32_t> keeping_;  // units that may keep something (quads found)
+  std::uint64_t updates_ = 0;
   // Per vertex, written for the vertices of the quads being made only (the diagonal choice and the
   // subdivision index colour by vertex): left uninitialised, so a model's untouched pages cost nothing.
   std::unique_ptr<glm::vec3[]> colour_;

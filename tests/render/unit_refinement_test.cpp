@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/vec3.hpp>
+#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -143,6 +144,70 @@ TEST(UnitRefinement, ATimeSliceMakesAtLeastOneUnitACallInOrder) {
   EXPECT_TRUE(sliced.update(order, key, colour_of, sliced_indices, [] { return true; }).finished);
   EXPECT_EQ(sliced_indices, at_once_indices);
   EXPECT_EQ(sliced.totals(order).subdivision_triangles, at_once.totals(order).subdivision_triangles);
+}
+
+// What units outside the sight keep is bounded: past the bound the unit seen longest ago lets its quads and
+// sub-quads go and is made again, to the same indices and sub-quads, when next seen; the sight's units keep
+// theirs whatever the bound.
+TEST(UnitRefinement, UnitsOutOfSightLetGoOldestFirstPastTheBound) {
+  const Fixture f = rooms({1.0f, 0.7f});
+  const RefinementKey key{f.levels, 0.01f, 3};
+  const auto colour_of = [&](std::uint32_t v) { return f.colour[v]; };
+  const std::size_t units = f.layout.units();
+  // Each unit's bytes, made alone without a bound.
+  std::vector<std::size_t> bytes(units);
+  std::vector<std::uint32_t> with_sub_quads;
+  UnitRefinement unbounded(input_of(f), std::numeric_limits<std::size_t>::max());
+  std::vector<std::uint32_t> reference = f.layout.fine.indices;
+  for (std::uint32_t u = 0; u < units; ++u) {
+    const std::size_t before = unbounded.kept_bytes();
+    (void)unbounded.update(std::vector<std::uint32_t>{u}, key, colour_of, reference);
+    bytes[u] = unbounded.kept_bytes() - before;
+    if (unbounded.totals(std::vector<std::uint32_t>{u}).subdivision_triangles > 0)
+      with_sub_quads.push_back(u);
+  }
+  ASSERT_GE(with_sub_quads.size(), 3u);
+  EXPECT_EQ(unbounded.kept_bytes(), std::accumulate(bytes.begin(), bytes.end(), std::size_t(0)))
+      << "nothing let go without a bound";
+
+  // A bound of 0: only the sight keeps anything.
+  UnitRefinement none(input_of(f), 0);
+  std::vector<std::uint32_t> indices = f.layout.fine.indices;
+  for (std::uint32_t u = 0; u < units; ++u) {
+    EXPECT_EQ(none.update(std::vector<std::uint32_t>{u}, key, colour_of, indices).made,
+              std::vector<std::uint32_t>{u});
+    EXPECT_EQ(none.kept_bytes(), bytes[u]) << u;
+  }
+  EXPECT_EQ(indices, reference) << "diagonals chosen stay in the indices when the quads are let go";
+  const std::uint32_t back = with_sub_quads.front();
+  EXPECT_EQ(none.update(std::vector<std::uint32_t>{back}, key, colour_of, indices).made,
+            std::vector<std::uint32_t>{back})
+      << "let go, so made again";
+  std::vector<ShadedVertex> again, first;
+  std::vector<IndexRange> runs;
+  none.gather(std::vector<std::uint32_t>{back}, again, runs);
+  unbounded.gather(std::vector<std::uint32_t>{back}, first, runs);
+  ASSERT_EQ(again.size(), first.size());
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    EXPECT_EQ(again[k].position, first[k].position) << k;
+    EXPECT_EQ(again[k].radiosity, first[k].radiosity) << k;
+  }
+  EXPECT_EQ(indices, reference);
+
+  // Oldest first: the largest unit seen, then two others no larger; a bound that holds the first two lets
+  // the oldest go when the third comes and keeps the other two.
+  std::vector<std::uint32_t> by_size = with_sub_quads;
+  std::sort(by_size.begin(), by_size.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return bytes[a] > bytes[b]; });
+  const std::uint32_t oldest = by_size[0], middle = by_size[1], newest = by_size.back();
+  UnitRefinement bounded(input_of(f), bytes[oldest] + bytes[middle]);
+  for (const std::uint32_t u : {oldest, middle, newest})
+    (void)bounded.update(std::vector<std::uint32_t>{u}, key, colour_of, indices);
+  EXPECT_EQ(bounded.kept_bytes(), bytes[middle] + bytes[newest]);
+  EXPECT_EQ(bounded.totals(std::vector<std::uint32_t>{oldest}).subdivision_triangles, 0u) << "let go";
+  EXPECT_GT(bounded.totals(std::vector<std::uint32_t>{middle}).subdivision_triangles, 0u) << "kept";
+  EXPECT_TRUE(
+      bounded.update(std::vector<std::uint32_t>{middle, newest}, key, colour_of, indices).made.empty());
 }
 
 }  // namespace unit_refinement_test
