@@ -62,14 +62,20 @@ class FrameGovernor {
   static constexpr double kModelSpread = 2.0;
   // While still: how many accumulation samples fit in one frame (at least 1).
   [[nodiscard]] int samples_per_frame() const;
+  // A still frame that draws the view once (full light, its diagonals and sub-quads so far; no accumulation)
+  // took `ms` besides making diagonals and sub-quads: the view's own cost, which the next refinement slice
+  // leaves time for.
+  void record_still_draw(double ms);
   // While still: the CPU time a frame may spend before it draws (a stop's diagonals and sub-quads) and still
-  // fit the budget with one sample's drawing: the budget (less its headroom) less a sample's expected time,
-  // at most `cap` and at least kMinSliceMs (or `cap` if smaller); `cap` while nothing was measured.
+  // fit the budget with its drawing: the budget (less its headroom) less the expected draw
+  // (expected_still_draw_ms), at most `cap` and at least kMinSliceMs (or `cap` if smaller); `cap` while
+  // nothing was measured.
   [[nodiscard]] double still_slice_ms(double cap) const;
-  // A sample's measured time; before the first, the full-detail level's mean moving frame (or the last
-  // moving frame, if larger or the only one), so the first stop after start leaves its frame time too.
-  // Negative while nothing was measured.
-  [[nodiscard]] double expected_sample_ms() const;
+  // The larger of the last still frame's draw and an accumulation sample's measured time (a sample draws
+  // the view and accumulates it: a margin for what a slice adds to its frame); before either, the
+  // full-detail level's mean moving frame (or the last moving frame, if larger or the only one). Negative
+  // while nothing was measured.
+  [[nodiscard]] double expected_still_draw_ms() const;
   static constexpr double kMinSliceMs = 1.0;  // some progress every frame, however slow the drawing
   // Estimate in ms, or a negative number when never measured.
   [[nodiscard]] double estimate(std::uint32_t cell, MovingLevel level) const;
@@ -80,6 +86,7 @@ class FrameGovernor {
       moving_;  // per cell, per level; < 0 unknown
   double sample_ms_ = -1.0;
   double last_moving_ms_ = -1.0;  // the last moving frame's time
+  double still_draw_ms_ = -1.0;   // the last still frame's draw
   // Per level: decayed sums for the least-squares line ms = a + b * triangles.
   struct LineFit {
     double n = 0.0, t = 0.0, m = 0.0, tt = 0.0, tm = 0.0;

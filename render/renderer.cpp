@@ -268,6 +268,7 @@ struct Renderer::Impl {
   int shown_width = 0, shown_height = 0;
   std::vector<float> shown_levels;
   std::optional<UnitRefinement> refinement;    // made with the layout: its polygons by unit, once
+  double making_ms = 0.0;                      // this frame's making of diagonals and sub-quads
   std::vector<std::uint32_t> refined_indices;  // INDX with colour-chosen diagonals
   bool restart = true;  // settings changed or draw() overwrote the picture: start again as if moved
 
@@ -1099,9 +1100,15 @@ void Renderer::Impl::choose_diagonals(const View& view) {
   for (std::size_t i = 0; i < by_distance.size(); ++i) nearest_first[i] = by_distance[i].second;
   const UnitRefinement::Update update = refinement->update(
       nearest_first, {levels, settings.subdivision_error * exposure(), settings.subdivision_depth}, colour_of,
-      refined_indices, [&, slice = governor.still_slice_ms(settings.diagonal_slice_ms)] {
-        return settings.diagonal_slice_ms > 0.0 && milliseconds_since(start) > slice;
+      refined_indices,
+      [&, slice = governor.still_slice_ms(settings.diagonal_slice_ms), units_made = 0]() mutable {
+        // Asked after each unit made: stop where the next, taken to cost what the units so far cost on
+        // average, would end past the slice (a large cluster made after the slice ran out overran it by
+        // several ms on L).
+        const double spent = milliseconds_since(start);
+        return settings.diagonal_slice_ms > 0.0 && spent + spent / double(++units_made) > slice;
       });
+  making_ms = milliseconds_since(start);
   if (!update.finished) schedule.diagonals_unfinished();
   const std::vector<std::uint32_t>& made = update.made;
   const RefinementTotals totals = refinement->totals(units);
@@ -1197,6 +1204,7 @@ bool Renderer::refine(const View& view, int width, int height) {
   r.stats.stage = step.stage;
   if (!step.draws()) return false;  // converged: the picture shown is final, the CPU stays idle
 
+  r.making_ms = 0.0;
   if (step.stage == RefineStage::Diagonals) r.choose_diagonals(view);
   if (step.stage != RefineStage::Accumulating) {
     const bool moving = step.stage == RefineStage::Moving;
@@ -1218,6 +1226,12 @@ bool Renderer::refine(const View& view, int width, int height) {
         r.governor.record_moving(r.stats.cell, r.moving_level, milliseconds_since(start),
                                  double(r.stats.triangles_drawn));
       }
+    } else if (!r.use_queries()) {
+      // The frame less its making of diagonals and sub-quads (their gathering, upload and the draw): what
+      // the next refinement slice leaves time for (where the GPU is timed by queries, it draws fast enough
+      // that the slice's cap holds).
+      glFinish();
+      r.governor.record_still_draw(milliseconds_since(start) - r.making_ms);
     }
   } else {
     if (!r.accumulator) r.accumulator.emplace();

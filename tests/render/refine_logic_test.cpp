@@ -35,27 +35,36 @@ TEST(FrameGovernor, StillSliceLeavesTimeToDrawTheFrame) {
   EXPECT_EQ(slower.still_slice_ms(0.5), 0.5) << "a cap below the least slice wins";
 }
 
-// Before the first still sample, the slice leaves time for what the moving frames showed drawing costs: the
-// full-detail level's mean, or the last moving frame when no full-detail frame was drawn (or it was slower).
-TEST(FrameGovernor, FirstStopSliceFollowsTheMovingFrames) {
+// The slice leaves time for the larger of the view's last still draw and a sample; before either, for what
+// the moving frames showed drawing costs: the full-detail level's mean, or the last moving frame when no
+// full-detail frame was drawn (or it was slower).
+TEST(FrameGovernor, SliceLeavesTimeForTheStillDrawOrWhatStandsForIt) {
   const double budget = 0.9 * 1000.0 / 60.0;  // the budget less its headroom
   FrameGovernor governor(60.0);
-  EXPECT_LT(governor.expected_sample_ms(), 0.0);
+  EXPECT_LT(governor.expected_still_draw_ms(), 0.0);
   governor.record_moving(0, MovingLevel::Coarse, 12.0);
-  EXPECT_DOUBLE_EQ(governor.expected_sample_ms(), 12.0);
+  EXPECT_DOUBLE_EQ(governor.expected_still_draw_ms(), 12.0);
   EXPECT_NEAR(governor.still_slice_ms(8.0), budget - 12.0, 1e-9);
   for (int k = 0; k < 4; ++k) {
     governor.record_moving(1, MovingLevel::Patches, 13.0, 1000.0);
     governor.record_moving(1, MovingLevel::Patches, 14.0, 1000.0);
   }
   governor.record_moving(2, MovingLevel::Reduced, 4.0);
-  EXPECT_NEAR(governor.expected_sample_ms(), 13.5, 0.01)
+  EXPECT_NEAR(governor.expected_still_draw_ms(), 13.5, 0.01)
       << "the full-detail mean (decayed), not the cheap last frame";
   EXPECT_NEAR(governor.still_slice_ms(8.0), budget - 13.5, 0.01);
   governor.record_moving(2, MovingLevel::Coarse, 30.0);
   EXPECT_EQ(governor.still_slice_ms(8.0), FrameGovernor::kMinSliceMs) << "a slower last frame counts";
-  governor.record_sample(2.0);
-  EXPECT_EQ(governor.still_slice_ms(8.0), 8.0) << "a measured sample replaces the guess";
+  governor.record_sample(12.5);
+  EXPECT_NEAR(governor.still_slice_ms(8.0), budget - 12.5, 1e-9) << "a measured sample replaces the guess";
+  governor.record_still_draw(2.0);
+  EXPECT_NEAR(governor.still_slice_ms(8.0), budget - 12.5, 1e-9) << "the larger of still draw and sample";
+  governor.record_still_draw(14.0);
+  EXPECT_NEAR(governor.still_slice_ms(8.0), budget - 14.0, 1e-9);
+  FrameGovernor drawn_only(60.0);
+  drawn_only.record_moving(0, MovingLevel::Coarse, 30.0);
+  drawn_only.record_still_draw(2.0);
+  EXPECT_EQ(drawn_only.still_slice_ms(8.0), 8.0) << "a measured still draw replaces the moving frames' guess";
 }
 
 // A Diagonals step that ran out of its time slice is followed by another; accumulation starts after the
