@@ -68,15 +68,15 @@ class FrameGovernor {
   void record_still_draw(double ms);
   // While still: the CPU time a frame may spend before it draws (a stop's diagonals and sub-quads) and still
   // fit the budget with its drawing: the budget (less its headroom) less the expected draw
-  // (expected_still_draw_ms), at most `cap` and at least kMinSliceMs (or `cap` if smaller); `cap` while
-  // nothing was measured.
+  // (expected_still_draw_ms), at most `cap`; `cap` while nothing was measured, and where the drawing leaves
+  // less than kMinSliceMs (the frame misses the budget anyway: fewer such frames).
   [[nodiscard]] double still_slice_ms(double cap) const;
   // The larger of the last still frame's draw and an accumulation sample's measured time (a sample draws
   // the view and accumulates it: a margin for what a slice adds to its frame); before either, the
   // full-detail level's mean moving frame (or the last moving frame, if larger or the only one). Negative
   // while nothing was measured.
   [[nodiscard]] double expected_still_draw_ms() const;
-  static constexpr double kMinSliceMs = 1.0;  // some progress every frame, however slow the drawing
+  static constexpr double kMinSliceMs = 1.0;  // less than this left: the frame cannot fit
   // Estimate in ms, or a negative number when never measured.
   [[nodiscard]] double estimate(std::uint32_t cell, MovingLevel level) const;
 
