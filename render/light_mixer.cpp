@@ -4,6 +4,7 @@
 
 #include "model/compact_code.hpp"
 #include "render/display_light.hpp"
+#include "render/tonemap.hpp"
 
 namespace walk::render {
 
@@ -16,7 +17,7 @@ static_assert(std::uint64_t(kMaxCircuits) << 8 < kLastCompactEntry,
 
 // Each vertex loops over its own entries only (render/display_light.hpp), one texel each: the full entry's
 // RGBA32F holds radiosity and circuit together.
-const char* const kLightMixerVertexShader = R"glsl(#version 330 core
+const std::string kLightMixerVertexShader = std::string(R"glsl(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_albedo;
 layout(location = 2) in uint a_polygon;
@@ -34,10 +35,15 @@ uniform usamplerBuffer u_compact_code;   // compact entries: circuit << 8 | code
 uniform float u_ambient;
 uniform vec4 u_clip_plane;  // the map view cuts away what is above the viewer's storey (GL_CLIP_DISTANCE0)
 #ifdef WALK_FLAT_LIGHT
-flat out vec3 v_radiosity;  // the provoking vertex's (the coarse form ends each triangle on its polygon's)
+// The provoking vertex's (the coarse form ends each triangle on its polygon's), already shown: exposed and
+// sRGB encoded here, once a vertex, where the fragment stage would do it at every fragment of the triangle
+// for the same value (llvmpipe's fragment work is most of a moving frame). Never with albedo maps.
+flat out vec3 v_radiosity;
+uniform float u_inv_exposure;
 #else
 out vec3 v_radiosity;
 #endif
+)glsl") + kSrgbEncodeGlsl + R"glsl(
 
 const uint kNone = 0xffffffffu;
 const float kLastFull = 1048576.0;       // added to a vertex's last full entry's circuit
@@ -80,6 +86,9 @@ void main() {
   vec3 coarse = u_patch_weight < 1.0 ? sum_full(u_polygon_light, texelFetch(u_polygon_first, int(a_polygon)).r)
                                      : vec3(0.0);
   v_radiosity = a_albedo * u_ambient + mix(coarse, fine, u_patch_weight);
+#ifdef WALK_FLAT_LIGHT
+  v_radiosity = srgb_encode(v_radiosity * u_inv_exposure);
+#endif
   gl_Position = u_view_projection * vec4(a_position, 1.0);
   gl_ClipDistance[0] = dot(u_clip_plane, vec4(a_position, 1.0));
 #ifdef WALK_ALBEDO_MAPS

@@ -31,11 +31,18 @@ uniform float u_opacity;
 out vec4 o_colour;
 )glsl") + kSrgbEncodeGlsl + R"glsl(
 void main() {
+#ifdef WALK_FLAT_LIGHT
+#ifdef WALK_ALBEDO_MAPS
+#error flat light is encoded per vertex, which albedo maps would modulate per fragment
+#endif
+  o_colour = vec4(v_radiosity, u_opacity);  // encoded by the vertex stage (render/light_mixer.hpp)
+#else
   vec3 radiosity = v_radiosity;
 #ifdef WALK_ALBEDO_MAPS
   radiosity *= albedo_modulation();
 #endif
   o_colour = vec4(srgb_encode(radiosity * u_inv_exposure), u_opacity);
+#endif
 }
 )glsl";
 
