@@ -268,7 +268,6 @@ struct Renderer::Impl {
   int shown_width = 0, shown_height = 0;
   std::vector<float> shown_levels;
   std::optional<UnitRefinement> refinement;    // made with the layout: its polygons by unit, once
-  double making_ms = 0.0;                      // this frame's making of diagonals and sub-quads
   std::vector<std::uint32_t> refined_indices;  // INDX with colour-chosen diagonals
   bool restart = true;  // settings changed or draw() overwrote the picture: start again as if moved
 
@@ -438,7 +437,8 @@ struct Renderer::Impl {
   void warm_up(const View& view, int width, int height);
   std::pair<int, int> warmed_size{0, 0};
   void present(int width, int height) const;
-  void choose_diagonals(const View& view);
+  // Returns the ms spent making diagonals and sub-quads (the rest of its work is the frame's drawing).
+  double choose_diagonals(const View& view);
   void draw_map(const View& view, int width, int height);
   // Draws runs of `vao`'s ShadedVertex triangles with the shaded program.
   void draw_shaded(GLuint vao, std::span<const GLint> firsts, std::span<const GLsizei> counts,
@@ -1080,7 +1080,7 @@ void Renderer::Impl::draw_map(const View& view, int width, int height) {
 // first for as long a frame as leaves time to draw it (FrameGovernor::still_slice_ms, at most
 // RefineSettings::diagonal_slice_ms); a vertex's colour is computed here exactly as
 // the vertex shader mixes it.
-void Renderer::Impl::choose_diagonals(const View& view) {
+double Renderer::Impl::choose_diagonals(const View& view) {
   const auto vertices = bundle.vertices();
   if (refined_indices.empty()) refined_indices = layout.fine.indices;
   const float ambient = bundle.meta().ambient;
@@ -1110,7 +1110,7 @@ void Renderer::Impl::choose_diagonals(const View& view) {
         const double spent = milliseconds_since(making_start);
         return settings.diagonal_slice_ms > 0.0 && spent + spent / double(++units_made) > slice;
       });
-  making_ms = milliseconds_since(making_start);
+  const double making_ms = milliseconds_since(making_start);
   if (!update.finished) schedule.diagonals_unfinished();
   const std::vector<std::uint32_t>& made = update.made;
   const RefinementTotals totals = refinement->totals(units);
@@ -1150,6 +1150,7 @@ void Renderer::Impl::choose_diagonals(const View& view) {
                     GLsizeiptr(r.count * sizeof(std::uint32_t)), refined_indices.data() + r.first);
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
   check_gl("uploading the chosen diagonals");
+  return making_ms;
 }
 
 // The first frame down a drawing path costs llvmpipe its JIT compile of that state: the half-resolution
@@ -1206,8 +1207,7 @@ bool Renderer::refine(const View& view, int width, int height) {
   r.stats.stage = step.stage;
   if (!step.draws()) return false;  // converged: the picture shown is final, the CPU stays idle
 
-  r.making_ms = 0.0;
-  if (step.stage == RefineStage::Diagonals) r.choose_diagonals(view);
+  const double making_ms = step.stage == RefineStage::Diagonals ? r.choose_diagonals(view) : 0.0;
   if (step.stage != RefineStage::Accumulating) {
     const bool moving = step.stage == RefineStage::Moving;
     const float resolution = moving && r.moving_level == MovingLevel::Reduced ? 0.5f : 1.0f;
@@ -1233,7 +1233,7 @@ bool Renderer::refine(const View& view, int width, int height) {
       // the next refinement slice leaves time for (where the GPU is timed by queries, it draws fast enough
       // that the slice's cap holds).
       glFinish();
-      r.governor.record_still_draw(milliseconds_since(start) - r.making_ms);
+      r.governor.record_still_draw(milliseconds_since(start) - making_ms);
     }
   } else {
     if (!r.accumulator) r.accumulator.emplace();
