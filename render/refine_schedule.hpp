@@ -17,8 +17,9 @@ struct RefineSettings {
   float subdivision_error = 0.01f;
   int subdivision_depth = 3;
   // Most CPU time a still frame spends making diagonals and sub-quads before it is drawn, the rest left for
-  // the next frames: about half the 16.7 ms frame budget, less where a sample's measured drawing leaves
-  // less (FrameGovernor::still_slice_ms). 0: all in one frame (tests that count frames).
+  // the next frames: about half the 16.7 ms frame budget, less where the frame's measured drawing (the
+  // larger of the view's still draw and a sample) leaves less (FrameGovernor::still_slice_ms). 0: all in
+  // one frame (tests that count frames).
   double diagonal_slice_ms = 8.0;
 };
 
