@@ -83,13 +83,22 @@ Path clip_x(const Path& piece, cInt limit, bool keep_right) {
   return out;
 }
 
-// The region's boundary edges with their exact 3D end points. A dicing point on a boundary edge keeps the
-// coordinates that edge keeps constant, exactly, instead of taking them from its integer coordinates: those
-// are rounded to 1 um in the plane's frame, which for a slanted wall is not the model's frame, so a point
-// on the wall's vertical end edge came back up to a micrometre off it in x and y, and the crack between it
-// and the perpendicular wall let sight lines through a corner. Only those coordinates: moving a point onto
-// a slanted edge's line flipped slivers that the column cuts leave beside it (T-junction repair closes
-// slanted seams between coplanar faces instead).
+// An edge keeps a coordinate constant when its corners differ in it by at most this (metres): corners met by
+// plane intersections in double (the Quake reader's CSG) differ by about 1e-15 m where they should agree.
+// Placing a dicing point's coordinate from such corners moves it by at most this, far below float's rounding
+// (5e-7 m at 8 m from the origin).
+constexpr double kConstantCoordinateNoise = 1e-9;
+
+// The region's boundary edges with their exact 3D end points. A dicing point on a boundary edge takes the
+// coordinates that edge keeps constant from its corners (interpolated along it), instead of from its integer
+// coordinates: those are rounded to 1 um in the plane's frame, which for a slanted wall is not the model's
+// frame, so a point on the wall's vertical end edge came back up to a micrometre off it in x and y, and the
+// crack between it and the perpendicular wall let sight lines through a corner. Constant to a rounding, not
+// bit for bit: E1M1's 45-degree ceiling strips share an edge along x whose corners' z differ by 1e-15 m, so
+// each strip's dicing points kept y but took z from the plane frame, 1e-7 m apart, and float rounding opened
+// a crack between the strips. Only those coordinates: moving a point onto a slanted edge's line flipped
+// slivers that the column cuts leave beside it (T-junction repair closes slanted seams between coplanar faces
+// instead).
 class BoundaryEdges {
  public:
   BoundaryEdges(const Paths& region, const PointMap& points) : points_(points) {
@@ -113,7 +122,7 @@ class BoundaryEdges {
       if (t >= 0.0 && t <= 1.0 && cross * cross <= length2) {
         model::Vec3 q = points_.to_3d(p);
         for (int k = 0; k < 3; ++k)
-          if (e.A[k] == e.B[k]) q[k] = e.A[k];
+          if (std::abs(e.A[k] - e.B[k]) <= kConstantCoordinateNoise) q[k] = e.A[k] + t * (e.B[k] - e.A[k]);
         return q;
       }
     }

@@ -3,6 +3,7 @@
 // and orientation, and the real EnergyPlus house's floors.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <random>
@@ -171,6 +172,41 @@ TEST(TJunctions, SlantedSeamsBetweenDicedFloorsAreClosedInFloat) {
     EXPECT_EQ(repair_t_junctions(meshes, kTolerance).vertices_inserted, 0u);
   }
   EXPECT_GT(through_before, 1000u) << "the crack this repair exists for";
+}
+
+// Two ceiling strips at 45 degrees meeting along x, as in E1M1 above its slipgate hall: the corners of the
+// shared edge agree in y but differ in z by a rounding, as plane intersections in double leave them. Unless
+// the mesher places both strips' dicing points on the edge in z as well as y, each strip's points take z
+// from its own plane frame (1e-7 m apart) and float rounding opens a crack between the strips, which the
+// repair leaves alone because the strips' edges are axial and their points off each other's plane.
+// Two ceiling strips at 45 degrees meeting along x, E1M1's polygons 6552 and 6553 as its CSG leaves them:
+// the shared edge's corners agree in y but differ in z by a rounding. The mesher must place each strip's
+// dicing points on that edge in z as well as y: from the plane frame they came 1.4e-7 m above it in one
+// strip and 2.8e-7 m below in the other, float rounding put the two rows a float step apart, and a sight
+// line through the slit between them showed E1M1's verify a wall the PVS rightly leaves out. The T-junction
+// repair cannot close it: the strips' edges are axial and their points off each other's plane.
+TEST(TJunctions, SlopedStripsMeetingAlongAnAxisKeepTheEdgeExactly) {
+  const double y = 39.152000000000001, z = 6.8448;
+  const Vec3 s0{3.4431999999999992, y, 6.8447999999999976}, s1{10.352000000000004, y, 6.8447999999999984};
+  const std::array<Vec3, 4> lower{s0, s1, Vec3{10.758399999999998, 39.558399999999992, 6.4383999999999943},
+                                  Vec3{3.4431999999999992, 39.558399999999992, 6.4383999999999943}};
+  const std::array<Vec3, 4> upper{Vec3{3.4431999999999992, 38.948799999999991, 7.048},
+                                  Vec3{10.148800000000001, 38.948799999999991, 7.048}, s1, s0};
+  // Each outline from each of its corners: the plane frame, and so the dicing, follows the first.
+  for (int first = 0; first < 4; ++first) {
+    const auto from = [&](const std::array<Vec3, 4>& c) {
+      return quad(c[first], c[(first + 1) % 4], c[(first + 2) % 4], c[(first + 3) % 4]);
+    };
+    std::size_t on_edge = 0;
+    for (const Polygon& strip : {from(lower), from(upper)})
+      for (const Vec3& v : mesh_polygon(strip, 1.0).vertices)
+        if (v.y == y) {
+          ++on_edge;
+          EXPECT_NEAR(v.z, z, 1e-12) << "a dicing point on the shared edge is off it in z, at x " << v.x
+                                     << ", outlines from corner " << first;
+        }
+    EXPECT_GE(on_edge, 14u) << "both strips are diced along the edge";
+  }
 }
 
 TEST(TJunctions, SplitTrianglesKeepTheirQuadPartnersNextToThem) {
