@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -168,6 +169,12 @@ struct Renderer::Impl {
   // Per unit, its subdivided triangles' run in the shaded buffer (in vertices): a frame draws the runs of
   // the units its list draws, so still frames pay for the sub-quads in view, not the model's.
   std::vector<IndexRange> shaded_runs;
+  // What the shaded buffer was gathered for: a slice frame of the same sight, with no unit unmade since,
+  // uploads only the sub-quads it made (each slice re-uploading the whole sight's cost L up to 5.5 MB a
+  // frame). The buffer has room for shaded_capacity vertices.
+  std::vector<std::uint32_t> shaded_sight;
+  std::uint64_t shaded_unmade = 0;
+  GLsizei shaded_capacity = 0;
   std::vector<GLint> shaded_firsts;
   std::vector<GLsizei> shaded_counts;
   // The coarse form with vertices shared between polygons, and (made on first use, for the A/B of
@@ -439,6 +446,7 @@ struct Renderer::Impl {
   void present(int width, int height) const;
   // Returns the ms spent making diagonals and sub-quads (the rest of its work is the frame's drawing).
   double choose_diagonals(const View& view);
+  void upload_sub_quads(std::span<const std::uint32_t> units, std::span<const std::uint32_t> made);
   void draw_map(const View& view, int width, int height);
   // Draws runs of `vao`'s ShadedVertex triangles with the shaded program.
   void draw_shaded(GLuint vao, std::span<const GLint> firsts, std::span<const GLsizei> counts,
@@ -1121,18 +1129,7 @@ double Renderer::Impl::choose_diagonals(const View& view) {
   // The replaced quads stay in the index buffer, under their sub-quads: where a sub-quad's edge midpoint
   // meets a neighbour that was not split (a T-junction), pixels that fall between the triangles in float
   // show the quad's own Gouraud colour instead of a crack to the background.
-  std::vector<ShadedVertex> shaded_triangles;
-  refinement->gather(units, shaded_triangles, shaded_runs);
-  shaded_vertices = GLsizei(shaded_triangles.size());
-  if (!shaded_triangles.empty()) {
-    // The map view may have made the program already; the VAO is this step's own.
-    make_shaded_program();
-    if (!shaded_vao) make_shaded_vao(shaded_vao, shaded_vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(shaded_triangles.size() * sizeof(ShadedVertex)),
-                 shaded_triangles.data(), GL_DYNAMIC_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-  }
+  upload_sub_quads(units, made);
   // The made units' ranges only, runs of units next to each other as one (through the copy target: the
   // element binding belongs to whichever VAO is bound).
   glBindBuffer(GL_COPY_WRITE_BUFFER, refined_ibo);
@@ -1151,6 +1148,40 @@ double Renderer::Impl::choose_diagonals(const View& view) {
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
   check_gl("uploading the chosen diagonals");
   return making_ms;
+}
+
+// The sub-quads of the sight's made units into the shaded buffer: after a gather of the same sight with no
+// unit unmade since, only those of `made` are appended, where the buffer has room; otherwise the sight's all
+// are gathered again into a buffer with room for as many more.
+void Renderer::Impl::upload_sub_quads(std::span<const std::uint32_t> units,
+                                      std::span<const std::uint32_t> made) {
+  std::vector<ShadedVertex> triangles;
+  if (shaded_unmade == refinement->unmade() && std::ranges::equal(units, shaded_sight)) {
+    refinement->append(made, triangles, shaded_runs, std::uint32_t(shaded_vertices));
+    if (triangles.empty()) return;
+    if (GLsizeiptr(shaded_vertices) + GLsizeiptr(triangles.size()) <= GLsizeiptr(shaded_capacity)) {
+      glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
+      glBufferSubData(GL_ARRAY_BUFFER, GLintptr(shaded_vertices) * GLintptr(sizeof(ShadedVertex)),
+                      GLsizeiptr(triangles.size() * sizeof(ShadedVertex)), triangles.data());
+      glBindBuffer(GL_ARRAY_BUFFER, 0);
+      shaded_vertices += GLsizei(triangles.size());
+      return;
+    }
+  }
+  refinement->gather(units, triangles, shaded_runs);
+  shaded_sight.assign(units.begin(), units.end());
+  shaded_unmade = refinement->unmade();
+  shaded_vertices = GLsizei(triangles.size());
+  if (triangles.empty()) return;
+  // The map view may have made the program already; the VAO is this step's own.
+  make_shaded_program();
+  if (!shaded_vao) make_shaded_vao(shaded_vao, shaded_vbo);
+  shaded_capacity = GLsizei(std::min<std::size_t>(2 * triangles.size(), std::numeric_limits<GLsizei>::max()));
+  glBindBuffer(GL_ARRAY_BUFFER, shaded_vbo);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(shaded_capacity) * GLsizeiptr(sizeof(ShadedVertex)), nullptr,
+               GL_DYNAMIC_DRAW);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(triangles.size() * sizeof(ShadedVertex)), triangles.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 // The first frame down a drawing path costs llvmpipe its JIT compile of that state: the half-resolution

@@ -24,6 +24,7 @@ UnitRefinement::Update UnitRefinement::update(std::span<const std::uint32_t> uni
                                               const std::function<bool()>& out_of_time) {
   if (key_ != key) {
     key_ = key;
+    ++unmade_;
     for (const std::uint32_t u : keeping_) {
       Unit& unit = units_[u];
       kept_bytes_ -= unit.bytes();
@@ -50,6 +51,7 @@ UnitRefinement::Update UnitRefinement::update(std::span<const std::uint32_t> uni
 }
 
 void UnitRefinement::release(Unit& unit) {
+  unmade_ += unit.made;
   kept_bytes_ -= unit.bytes();
   const std::uint64_t seen = unit.seen;
   unit = Unit{};
@@ -107,15 +109,21 @@ void UnitRefinement::gather(std::span<const std::uint32_t> units, std::vector<Sh
                             std::vector<IndexRange>& runs) const {
   triangles.clear();
   runs.assign(units_.size(), {});
+  append(units, triangles, runs, 0);
+}
+
+void UnitRefinement::append(std::span<const std::uint32_t> units, std::vector<ShadedVertex>& triangles,
+                            std::vector<IndexRange>& runs, std::uint32_t first) const {
   for (const std::uint32_t u : units) {
-    if (u >= units_.size() || !units_[u].made || runs[u].count > 0) continue;
+    if (u >= units_.size() || u >= runs.size() || !units_[u].made || runs[u].count > 0) continue;
     const auto& t = units_[u].triangles;
-    runs[u] = {std::uint32_t(triangles.size()), std::uint32_t(t.size())};
+    runs[u] = {first + std::uint32_t(triangles.size()), std::uint32_t(t.size())};
     triangles.insert(triangles.end(), t.begin(), t.end());
   }
 }
 
 void UnitRefinement::forget() {
+  ++unmade_;
   for (Unit& unit : units_) unit = Unit{};
   keeping_.clear();
   kept_bytes_ = 0;

@@ -67,6 +67,15 @@ class UnitRefinement {
   // them, in vertices; every other unit's run is empty.
   void gather(std::span<const std::uint32_t> units, std::vector<ShadedVertex>& triangles,
               std::vector<IndexRange>& runs) const;
+  // Appends to `triangles` the sub-quad triangles of the made units of `units` that have no run in `runs`
+  // (sized by gather) and gives each its run, counted from `first` (the vertices already gathered before
+  // `triangles`): what a stop's slice made, after a gather of the same sight.
+  void append(std::span<const std::uint32_t> units, std::vector<ShadedVertex>& triangles,
+              std::vector<IndexRange>& runs, std::uint32_t first) const;
+
+  // Counts the times made units were unmade (a new mix, forget, or let go past the bound): sub-quads
+  // gathered while it had one value are still what the units hold while it has it.
+  [[nodiscard]] std::uint64_t unmade() const { return unmade_; }
 
   [[nodiscard]] RefinementTotals totals(std::span<const std::uint32_t> units) const;
 
@@ -101,7 +110,7 @@ class UnitRefinement {
   std::optional<RefinementKey> key_;  // what the made units were made for; none before the first update
   std::size_t kept_limit_ = 0, kept_bytes_ = 0;
   std::vector<std::uint32_t> keeping_;  // units that may keep something (quads found)
-  std::uint64_t updates_ = 0;
+  std::uint64_t updates_ = 0, unmade_ = 0;
   // Per vertex, written for the vertices of the quads being made only (the diagonal choice and the
   // subdivision index colour by vertex): left uninitialised, so a model's untouched pages cost nothing.
   std::unique_ptr<glm::vec3[]> colour_;

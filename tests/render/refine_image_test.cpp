@@ -288,6 +288,41 @@ TEST_P(RefineImageTest, SubQuadsAreDrawnWithTheirUnitsOnly) {
   }
 }
 
+// A stop whose slice makes one unit a frame uploads each frame's sub-quads after the ones before (in the
+// order made, not the sight's): the picture equals a stop that makes every unit in one frame, also after a
+// dimmer change (every unit made again, the buffer gathered anew) and for another view.
+TEST_P(RefineImageTest, SubQuadsMadeOverManySlicesDrawAsMadeInOne) {
+  TwoRooms scene;
+  scene.light_twist = true;
+  auto bundle = open_two_rooms(scene, "twist_sliced");
+  Renderer sliced(*bundle), at_once(*bundle);
+  sliced.set_refine_settings(
+      {.blend_steps = 0, .aa_samples = 1, .subdivision_depth = 4, .diagonal_slice_ms = 1e-9});
+  at_once.set_refine_settings(
+      {.blend_steps = 0, .aa_samples = 1, .subdivision_depth = 4, .diagonal_slice_ms = 0.0});
+  const auto diagonal_frames = [](Renderer& renderer, const View& view, Image* image) {
+    int frames = 0;
+    for (int n = 0; renderer.refine(view, kWidth, kHeight) && n < 1000; ++n)
+      frames += renderer.last_stats().stage == RefineStage::Diagonals;
+    *image = renderer.read_pixels(kWidth, kHeight);
+    return frames;
+  };
+  for (const double sign : {-1.0, +1.0}) {
+    const View view = looking_along_x(sign, 1.0);
+    for (const float dimmer : {1.0f, 0.4f}) {
+      for (Renderer* r : {&sliced, &at_once}) r->set_dimmers(std::vector<float>{dimmer, 1.0f});
+      Image sliced_image, at_once_image;
+      const int sliced_frames = diagonal_frames(sliced, view, &sliced_image);
+      EXPECT_EQ(diagonal_frames(at_once, view, &at_once_image), 1);
+      EXPECT_GT(sliced_frames, 2) << "one unit a frame, looking along " << sign;
+      ASSERT_GT(sliced.last_stats().subdivision_triangles_drawn, 0u);
+      EXPECT_EQ(sliced.last_stats().subdivision_triangles_drawn,
+                at_once.last_stats().subdivision_triangles_drawn);
+      EXPECT_EQ(sliced_image.rgba, at_once_image.rgba) << "looking along " << sign << ", dimmer " << dimmer;
+    }
+  }
+}
+
 // Where subdivided quads meet quads that are not, the sub-quads' edge midpoints are T-junctions: in float,
 // pixels along such an edge can fall between the triangles and show the clear colour. The room is closed
 // (ambient light everywhere), so a black pixel is a crack.

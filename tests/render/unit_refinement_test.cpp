@@ -146,6 +146,60 @@ TEST(UnitRefinement, ATimeSliceMakesAtLeastOneUnitACallInOrder) {
   EXPECT_EQ(sliced.totals(order).subdivision_triangles, at_once.totals(order).subdivision_triangles);
 }
 
+// A slice's units appended after a gather of the units made before get the runs, counted on from where the
+// gather ended, and the triangles a gather of every unit gives them; unmade() moves only when made units are
+// unmade (a new mix, forget), so what was gathered under one value is still what the units hold.
+TEST(UnitRefinement, AppendedUnitsMatchAWholeGather) {
+  const Fixture f = rooms({1.0f, 0.7f});
+  const RefinementKey key{f.levels, 0.01f, 3};
+  const auto colour_of = [&](std::uint32_t v) { return f.colour[v]; };
+  std::vector<std::uint32_t> sight(f.layout.units());
+  std::iota(sight.begin(), sight.end(), 0u);
+  UnitRefinement refinement(input_of(f));
+  std::vector<std::uint32_t> indices = f.layout.fine.indices;
+  ASSERT_EQ(refinement.update(sight, key, colour_of, indices, [] { return true; }).made.size(), 1u);
+  const std::uint64_t unmade = refinement.unmade();
+  std::vector<ShadedVertex> buffer;
+  std::vector<IndexRange> runs;
+  refinement.gather(sight, buffer, runs);
+  const std::size_t gathered = buffer.size();
+  while (true) {
+    const UnitRefinement::Update step =
+        refinement.update(sight, key, colour_of, indices, [] { return true; });
+    std::vector<ShadedVertex> added;
+    refinement.append(step.made, added, runs, std::uint32_t(buffer.size()));
+    buffer.insert(buffer.end(), added.begin(), added.end());
+    if (step.finished) break;
+  }
+  EXPECT_EQ(refinement.unmade(), unmade) << "making more unmakes nothing";
+  std::vector<ShadedVertex> whole;
+  std::vector<IndexRange> whole_runs;
+  refinement.gather(sight, whole, whole_runs);
+  ASSERT_EQ(buffer.size(), whole.size());
+  ASSERT_GT(whole.size(), 0u);
+  std::size_t appended = 0;
+  for (const std::uint32_t u : sight) {
+    ASSERT_EQ(runs[u].count, whole_runs[u].count) << u;
+    appended += runs[u].count > 0 && runs[u].first >= gathered;
+    for (std::uint32_t k = 0; k < runs[u].count; ++k) {
+      EXPECT_EQ(buffer[runs[u].first + k].position, whole[whole_runs[u].first + k].position) << u;
+      EXPECT_EQ(buffer[runs[u].first + k].radiosity, whole[whole_runs[u].first + k].radiosity) << u;
+    }
+  }
+  EXPECT_GT(appended, 0u) << "units made after the first gather came after it";
+  // Appending units that have runs, or are not made, adds nothing.
+  std::vector<ShadedVertex> none;
+  refinement.append(sight, none, runs, 0);
+  EXPECT_TRUE(none.empty());
+
+  const RefinementKey other{{0.5f, 0.7f}, 0.01f, 3};
+  (void)refinement.update(std::vector<std::uint32_t>{}, other, colour_of, indices);
+  EXPECT_GT(refinement.unmade(), unmade) << "a new mix unmakes the units";
+  const std::uint64_t after_mix = refinement.unmade();
+  refinement.forget();
+  EXPECT_GT(refinement.unmade(), after_mix);
+}
+
 // What units outside the sight keep is bounded: past the bound the unit seen longest ago lets its quads and
 // sub-quads go and is made again, to the same indices and sub-quads, when next seen; the sight's units keep
 // theirs whatever the bound.
