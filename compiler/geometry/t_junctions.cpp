@@ -150,9 +150,23 @@ std::vector<std::optional<Edge>> quad_partner_edges(const PolygonMesh& mesh) {
   return out;
 }
 
-// The repair among the meshes of one plane (`group`: their indices).
-void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_t> group, double tolerance,
-                  TJunctionStats& stats) {
+bool axial(const Vec3& a, const Vec3& b) {
+  return (a.x == b.x) + (a.y == b.y) + (a.z == b.z) >= 2;
+}
+
+// Which seams a repair pass closes.
+struct SeamPass {
+  // A vertex is inserted into an edge only within this distance (metres) of the edge's line.
+  double line_tolerance = 0.0;
+  // Across creases: only the ends of slanted boundary edges offer vertices (a crease along a slanted line
+  // has a slanted edge on both sides; axial edges need no repair), only to meshes in another plane
+  // (coplanar ones are the in-plane pass's).
+  bool creases = false;
+};
+
+// The repair among the meshes of `group` (their indices): one plane's, or every mesh's for creases.
+void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_t> group, double tolerance,
+                  const SeamPass& pass, TJunctionStats& stats) {
   // Every mesh's boundary, and its boundary vertices numbered across the group with their mesh.
   std::vector<std::vector<BoundaryEdge>> edges(group.size());  // by place in the group
   std::vector<Vec3> points;
@@ -162,9 +176,14 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   for (std::uint32_t g = 0; g < group.size(); ++g) {
     const std::uint32_t m = group[g];
     edges[g] = boundary_edges(meshes[m]);
+    if (pass.creases)
+      std::erase_if(edges[g], [&](const BoundaryEdge& e) {
+        return axial(meshes[m].vertices[e.a], meshes[m].vertices[e.b]);
+      });
     std::vector<std::uint32_t> on_boundary;
     for (const auto& e : edges[g]) {
       on_boundary.push_back(e.a);
+      if (pass.creases) on_boundary.push_back(e.b);
       edge_length_sum += glm::distance(meshes[m].vertices[e.a], meshes[m].vertices[e.b]);
       ++edge_count;
     }
@@ -187,6 +206,8 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   std::vector<Insertion> found;
   for (std::uint32_t g = 0; g < group.size(); ++g) {
     PolygonMesh& mesh = meshes[group[g]];
+    // A mesh of no area has no plane to keep a point in (a zero normal passes any plane test).
+    if (!(glm::dot(mesh.normal, mesh.normal) > 0.5)) continue;
     // Per triangle, in list order: the edges to split and the points on each, as this mesh's vertices.
     std::map<std::uint32_t, std::vector<std::pair<Edge, std::vector<std::uint32_t>>>> splits;
     std::unordered_map<std::uint32_t, std::uint32_t> copy_of;  // global point -> this mesh's vertex
@@ -194,7 +215,7 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
       const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
       // An edge along an axis keeps two coordinates, which float rounds alike for every point on it: its
       // T-junctions cannot open. Splitting there would only add slivers and vertices.
-      if ((a.x == b.x) + (a.y == b.y) + (a.z == b.z) >= 2) continue;
+      if (axial(a, b)) continue;
       const Vec3 d = b - a;
       const double length2 = glm::dot(d, d);
       if (!(length2 > 4.0 * tolerance * tolerance))
@@ -207,10 +228,13 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
       found.clear();
       for (std::uint32_t p : near) {
         if (point_mesh[p] == g) continue;
+        if (pass.creases &&
+            std::abs(glm::dot(meshes[group[point_mesh[p]]].normal, mesh.normal)) >= 1.0 - kSeamNormalBin)
+          continue;
         const Vec3& x = points[p];
         const double t = glm::dot(x - a, d) / length2;
         if (t * length <= tolerance || (1.0 - t) * length <= tolerance) continue;
-        if (glm::distance(x, a + d * t) > tolerance) continue;
+        if (glm::distance(x, a + d * t) > pass.line_tolerance) continue;
         if (std::abs(glm::dot(x - a, mesh.normal)) > kSeamNoise) continue;
         found.push_back({t, p});
       }
@@ -263,6 +287,74 @@ void repair_plane(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   }
 }
 
+// A slanted boundary edge keyed by its line: direction up to sign in bins of kSeamNormalBin, and the line's
+// point nearest the origin in bins of kCreaseLineBin.
+struct LineEdge {
+  std::array<long long, 6> line;
+  std::uint32_t mesh = 0;
+  Vec3 a, b;
+};
+
+std::array<long long, 6> line_key(const Vec3& a, const Vec3& b) {
+  Vec3 u = glm::normalize(b - a);
+  int lead = 0;  // up to sign, as the planes' normals below
+  while (lead < 2 && std::abs(u[lead]) <= 0.25) ++lead;
+  if (u[lead] < 0.0) u = -u;
+  const Vec3 nearest = a - u * glm::dot(a, u);
+  return {std::llround(u.x / kSeamNormalBin),       std::llround(u.y / kSeamNormalBin),
+          std::llround(u.z / kSeamNormalBin),       std::llround(nearest.x / kCreaseLineBin),
+          std::llround(nearest.y / kCreaseLineBin), std::llround(nearest.z / kCreaseLineBin)};
+}
+
+// Creases: where two planes meet along a slanted line, each side's corners on it go into the other's edge.
+// Only points on the line to double noise (corners both planes' intersections put there), so no point
+// leaves the plane it is inserted into by more than kSeamNoise. The edges are grouped by line first, and
+// only the meshes of a line where an end of one mesh's edge lies inside another plane's edge are repaired
+// together: over the whole model at once, a grid of every slanted end held thousands of a furnished
+// model's small triangles' ends per cell (the conference room ran minutes).
+void repair_creases(std::vector<PolygonMesh>& meshes, double tolerance, TJunctionStats& stats) {
+  std::vector<LineEdge> edges;
+  for (std::uint32_t m = 0; m < meshes.size(); ++m) {
+    const PolygonMesh& mesh = meshes[m];
+    if (!(glm::dot(mesh.normal, mesh.normal) > 0.5)) continue;
+    for (const BoundaryEdge& e : boundary_edges(mesh)) {
+      const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
+      if (axial(a, b) || !(glm::distance(a, b) > 2.0 * tolerance)) continue;
+      edges.push_back({line_key(a, b), m, a, b});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const LineEdge& l, const LineEdge& r) {
+    return l.line != r.line ? l.line < r.line : l.mesh < r.mesh;
+  });
+  // Does an end of `f` lie inside `e`, farther than the tolerance from its ends, in another plane?
+  const auto inside = [&](const LineEdge& e, const LineEdge& f) {
+    if (e.mesh == f.mesh ||
+        std::abs(glm::dot(meshes[e.mesh].normal, meshes[f.mesh].normal)) >= 1.0 - kSeamNormalBin)
+      return false;
+    const Vec3 d = e.b - e.a;
+    const double length = glm::length(d);
+    for (const Vec3& x : {f.a, f.b}) {
+      const double along = glm::dot(x - e.a, d) / length;
+      if (along > tolerance && along < length - tolerance) return true;
+    }
+    return false;
+  };
+  const SeamPass across{.line_tolerance = kSeamNoise, .creases = true};
+  std::vector<std::uint32_t> group;
+  for (std::size_t first = 0, next = 0; first < edges.size(); first = next) {
+    next = first + 1;
+    while (next < edges.size() && edges[next].line == edges[first].line) ++next;
+    bool joins = false;
+    for (std::size_t i = first; i < next && !joins; ++i)
+      for (std::size_t j = first; j < next && !joins; ++j) joins = inside(edges[i], edges[j]);
+    if (!joins) continue;
+    group.clear();
+    for (std::size_t i = first; i < next; ++i)
+      if (group.empty() || group.back() != edges[i].mesh) group.push_back(edges[i].mesh);
+    repair_group(meshes, group, tolerance, across, stats);
+  }
+}
+
 }  // namespace
 
 TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double tolerance) {
@@ -293,17 +385,21 @@ TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double toler
   std::sort(keys.begin(), keys.end(), [](const Key& l, const Key& r) {
     return l.normal != r.normal ? l.normal < r.normal : l.offset < r.offset;
   });
+  const SeamPass in_plane{.line_tolerance = tolerance};
   std::vector<std::uint32_t> group;
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const bool joins =
         i > 0 && keys[i].normal == keys[i - 1].normal && keys[i].offset - keys[i - 1].offset <= kSeamNoise;
     if (!joins) {
-      if (group.size() > 1) repair_plane(meshes, group, tolerance, stats);
+      if (group.size() > 1) repair_group(meshes, group, tolerance, in_plane, stats);
       group.clear();
     }
     group.push_back(keys[i].mesh);
   }
-  if (group.size() > 1) repair_plane(meshes, group, tolerance, stats);
+  if (group.size() > 1) repair_group(meshes, group, tolerance, in_plane, stats);
+  const std::size_t in_plane_inserted = stats.vertices_inserted;
+  repair_creases(meshes, tolerance, stats);
+  stats.crease_vertices_inserted = stats.vertices_inserted - in_plane_inserted;
   return stats;
 }
 

@@ -20,26 +20,35 @@ namespace walk::compiler {
 // Points this close to each other on one edge are one point: inserting both would cut a triangle of no area.
 inline constexpr double kSeamNoise = 1e-9;
 
-// Only coplanar neighbours give vertices: meshes whose unit normals, up to sign, fall in the same bins of
-// this width on each axis (a rounding apart; two normals straddling a bin edge are not joined) and whose
-// planes lie within kSeamNoise of each other. Where a wall stands on a floor's slanted edge, inserting each
-// into the other would cut slivers into the slanted wall whose float-rounded normals tilt by up to a few
-// percent (back-face tests then keep them) and whose extra triangles all go to the ray caster's BSP. A
-// crack in such a corner is left, as before.
+// Coplanar neighbours give every boundary vertex near an edge: meshes whose unit normals, up to sign, fall in
+// the same bins of this width on each axis (a rounding apart; two normals straddling a bin edge are not
+// joined) and whose planes lie within kSeamNoise of each other. Across a crease (two planes meeting along a
+// slanted line: DM1's 45-degree ceilings on its walls) only the ends of slanted edges that lie on the
+// receiving edge's line within kSeamNoise are given, the corners both planes' intersections put there: a
+// weld-distance match across planes (EnergyPlus walls standing on a floor's slanted edge, 10 um off it)
+// would cut slivers whose float-rounded normals tilt by up to a few percent.
 inline constexpr double kSeamNormalBin = 1e-6;
 
+// Crease edges are matched by line: by direction in bins of kSeamNormalBin and by the line's point nearest
+// the origin in bins of this (metres), far above the noise of corners on one line (1e-12 m; an edge 0.1 mm
+// long moves that point by up to 1e-7 m at 100 m from the origin). Lines straddling a bin edge are not
+// joined, and their crease keeps its crack.
+inline constexpr double kCreaseLineBin = 1e-6;
+
 struct TJunctionStats {
-  std::size_t vertices_inserted = 0;  // vertex copies added to edges
-  std::size_t triangles_split = 0;    // triangles replaced by two or more
+  std::size_t vertices_inserted = 0;         // vertex copies added to edges
+  std::size_t triangles_split = 0;           // triangles replaced by two or more
+  std::size_t crease_vertices_inserted = 0;  // of vertices_inserted, across a crease between two planes
 };
 
 // Inserts into each mesh's boundary edges (edges without a twin in their own mesh) the boundary vertices of
 // the other coplanar meshes that lie within `tolerance` (metres) of the edge, farther than `tolerance` from
-// both of its ends and within kSeamNoise of the mesh's plane. An inserted vertex is an exact copy of the
-// other mesh's vertex, so both sides round alike. A split triangle keeps its place in the list with the piece
-// that holds the edge it shares with its quad partner (paired as the renderer pairs them to re-split quads),
-// so pairs stay pairs; the other pieces go to the end. Orientation is kept. Meshes with no neighbours within
-// tolerance are left exactly as they are.
+// both of its ends and within kSeamNoise of the mesh's plane; then, into slanted boundary edges, the ends of
+// other meshes' slanted boundary edges on the edge's line (within kSeamNoise of it), as far from its ends. An
+// inserted vertex is an exact copy of the other mesh's vertex, so both sides round alike. A split triangle
+// keeps its place in the list with the piece that holds the edge it shares with its quad partner (paired as
+// the renderer pairs them to re-split quads), so pairs stay pairs; the other pieces go to the end.
+// Orientation is kept. Meshes with no neighbours within tolerance are left exactly as they are.
 TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double tolerance);
 
 }  // namespace walk::compiler

@@ -253,18 +253,55 @@ TEST(TJunctions, WhatIsNotOnTheEdgeStaysOut) {
   EXPECT_EQ(with_point(c + (c - a) * 0.1), 0u);                               // on the line, past c
   EXPECT_EQ(with_point(a + (c - a) * 0.5 + Vec3(0, 0, 1e-6)), 0u);            // off the plane
 
-  // A neighbour in another plane (a wall standing on the edge) gives nothing: its vertex is on the edge but
-  // the repair only joins coplanar polygons.
-  PolygonMesh floor;
-  floor.vertices = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}};
-  floor.triangles = {0, 1, 2};
-  PolygonMesh wall;
-  wall.vertices = {{2, 0.5, 0}, {2, 0.5, 3}, {6, 1.5, 3}};
-  wall.normal =
-      glm::normalize(glm::cross(wall.vertices[1] - wall.vertices[0], wall.vertices[2] - wall.vertices[0]));
-  wall.triangles = {0, 1, 2};
-  std::vector<PolygonMesh> corner{floor, wall};
-  EXPECT_EQ(repair_t_junctions(corner, kTolerance).vertices_inserted, 0u);
+  // A neighbour in another plane (a wall standing on the edge, its foot along it: a crease) gives its
+  // corners on the edge's line, but not where its foot is off the line by more than double noise, though well
+  // within the weld tolerance: across planes only corners both planes put on the line are joined.
+  auto wall_at = [&](const Vec3& foot) {
+    PolygonMesh floor;
+    floor.vertices = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}};
+    floor.triangles = {0, 1, 2};
+    PolygonMesh wall;
+    const Vec3 along(1, 0.25, 0), up(0, 0, 3);
+    wall.vertices = {foot, foot + along, foot + along + up, foot + up};
+    wall.normal = glm::normalize(glm::cross(along, up));
+    wall.triangles = {0, 1, 2, 0, 2, 3};
+    std::vector<PolygonMesh> corner{floor, wall};
+    const TJunctionStats stats = repair_t_junctions(corner, kTolerance);
+    EXPECT_EQ(stats.crease_vertices_inserted, stats.vertices_inserted);
+    return stats.vertices_inserted;
+  };
+  EXPECT_EQ(wall_at({2, 0.5, 0}), 2u);
+  EXPECT_EQ(wall_at({2, 0.5 + 1e-7, 0}), 0u);
+}
+
+// A 45-degree ceiling meeting a wall, as in DM1 (polygons 3451 and 3454): the wall's top corners lie on the
+// ceiling's edge along the crease, inside it. Each becomes a vertex of the ceiling's edge, the ceiling keeps
+// its area and orientation, and nothing else changes; a wall corner a rounding off the crease stays out.
+TEST(TJunctions, CreaseCornersGoIntoTheEdgeAcrossThePlanes) {
+  const double c = 0.37;  // the crease: x = 0, z = y + c
+  auto meshes_with = [&](double lift) {
+    return std::vector<PolygonMesh>{
+        mesh_polygon(quad({1, 0, c}, {1, 2, 2 + c}, {0, 2, 2 + c}, {0, 0, c}), 0.0),  // the ceiling
+        mesh_polygon(quad({0, 0.5, 0}, {0, 1.5, 0}, {0, 1.5, 1.5 + c + lift}, {0, 0.5, 0.5 + c}), 0.0)};
+  };
+  std::vector<PolygonMesh> meshes = meshes_with(0.0);
+  const double ceiling_area = area(meshes[0]);
+  const std::vector<Vec3> wall_vertices = meshes[1].vertices;
+  const TJunctionStats stats = repair_t_junctions(meshes, kTolerance);
+  EXPECT_EQ(stats.vertices_inserted, 2u);
+  EXPECT_EQ(stats.crease_vertices_inserted, 2u);
+  EXPECT_EQ(meshes[1].vertices, wall_vertices) << "the ceiling's corners lie beyond the wall's edge";
+  std::size_t on_crease = 0;
+  for (const auto& [a, b] : outline_edges(meshes[0]))
+    for (const Vec3& v : {meshes[0].vertices[a], meshes[0].vertices[b]})
+      on_crease += v.x == 0.0 && (v == Vec3(0, 0.5, 0.5 + c) || v == Vec3(0, 1.5, 1.5 + c));
+  EXPECT_EQ(on_crease, 4u) << "both wall corners on the ceiling's outline, each ending two edges";
+  EXPECT_NEAR(area(meshes[0]), ceiling_area, 1e-12);
+  EXPECT_TRUE(all_counter_clockwise(meshes[0]));
+  EXPECT_EQ(repair_t_junctions(meshes, kTolerance).vertices_inserted, 0u) << "nothing left to do";
+
+  std::vector<PolygonMesh> off = meshes_with(1e-7);  // one corner 1e-7 m above the crease
+  EXPECT_EQ(repair_t_junctions(off, kTolerance).vertices_inserted, 1u);
 }
 
 // Coplanar meshes are grouped by normal up to sign: on a wall at 45 degrees two components are equal, and
