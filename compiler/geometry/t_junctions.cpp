@@ -154,6 +154,16 @@ bool axial(const Vec3& a, const Vec3& b) {
   return (a.x == b.x) + (a.y == b.y) + (a.z == b.z) >= 2;
 }
 
+// A mesh of no area has no plane to keep a point in (a zero normal passes any plane test).
+bool has_plane(const PolygonMesh& mesh) {
+  return glm::dot(mesh.normal, mesh.normal) > 0.5;
+}
+
+// Normals a rounding from parallel, either facing: the same plane's direction.
+bool parallel(const PolygonMesh& a, const PolygonMesh& b) {
+  return std::abs(glm::dot(a.normal, b.normal)) >= 1.0 - kSeamNormalBin;
+}
+
 // Which seams a repair pass closes.
 struct SeamPass {
   // A vertex is inserted into an edge only within this distance (metres) of the edge's line.
@@ -164,7 +174,8 @@ struct SeamPass {
   bool creases = false;
 };
 
-// The repair among the meshes of `group` (their indices): one plane's, or every mesh's for creases.
+// The repair among the meshes of `group` (their indices): one plane's, or those with edges on one crease
+// line.
 void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_t> group, double tolerance,
                   const SeamPass& pass, TJunctionStats& stats) {
   // Every mesh's boundary, and its boundary vertices numbered across the group with their mesh.
@@ -206,8 +217,7 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   std::vector<Insertion> found;
   for (std::uint32_t g = 0; g < group.size(); ++g) {
     PolygonMesh& mesh = meshes[group[g]];
-    // A mesh of no area has no plane to keep a point in (a zero normal passes any plane test).
-    if (!(glm::dot(mesh.normal, mesh.normal) > 0.5)) continue;
+    if (!has_plane(mesh)) continue;
     // Per triangle, in list order: the edges to split and the points on each, as this mesh's vertices.
     std::map<std::uint32_t, std::vector<std::pair<Edge, std::vector<std::uint32_t>>>> splits;
     std::unordered_map<std::uint32_t, std::uint32_t> copy_of;  // global point -> this mesh's vertex
@@ -228,9 +238,7 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
       found.clear();
       for (std::uint32_t p : near) {
         if (point_mesh[p] == g) continue;
-        if (pass.creases &&
-            std::abs(glm::dot(meshes[group[point_mesh[p]]].normal, mesh.normal)) >= 1.0 - kSeamNormalBin)
-          continue;
+        if (pass.creases && parallel(meshes[group[point_mesh[p]]], mesh)) continue;
         const Vec3& x = points[p];
         const double t = glm::dot(x - a, d) / length2;
         if (t * length <= tolerance || (1.0 - t) * length <= tolerance) continue;
@@ -316,7 +324,7 @@ void repair_creases(std::vector<PolygonMesh>& meshes, double tolerance, TJunctio
   std::vector<LineEdge> edges;
   for (std::uint32_t m = 0; m < meshes.size(); ++m) {
     const PolygonMesh& mesh = meshes[m];
-    if (!(glm::dot(mesh.normal, mesh.normal) > 0.5)) continue;
+    if (!has_plane(mesh)) continue;
     for (const BoundaryEdge& e : boundary_edges(mesh)) {
       const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
       if (axial(a, b) || !(glm::distance(a, b) > 2.0 * tolerance)) continue;
@@ -328,9 +336,7 @@ void repair_creases(std::vector<PolygonMesh>& meshes, double tolerance, TJunctio
   });
   // Does an end of `f` lie inside `e`, farther than the tolerance from its ends, in another plane?
   const auto inside = [&](const LineEdge& e, const LineEdge& f) {
-    if (e.mesh == f.mesh ||
-        std::abs(glm::dot(meshes[e.mesh].normal, meshes[f.mesh].normal)) >= 1.0 - kSeamNormalBin)
-      return false;
+    if (e.mesh == f.mesh || parallel(meshes[e.mesh], meshes[f.mesh])) return false;
     const Vec3 d = e.b - e.a;
     const double length = glm::length(d);
     for (const Vec3& x : {f.a, f.b}) {
