@@ -10,8 +10,9 @@
 #include <span>
 #include <tuple>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
+
+#include "common/hash.hpp"
 
 namespace walk::compiler {
 namespace {
@@ -29,20 +30,29 @@ struct BoundaryEdge {
   std::uint32_t triangle = 0;
 };
 
-// Edges of a mesh without their reverse in the same mesh: the polygon's outline and its holes.
-std::vector<BoundaryEdge> boundary_edges(const PolygonMesh& mesh) {
-  std::unordered_set<std::uint64_t> edges;
-  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3)
-    for (int e = 0; e < 3; ++e)
-      edges.insert(edge_key(mesh.triangles[t + e], mesh.triangles[t + (e + 1) % 3]));
-  std::vector<BoundaryEdge> out;
-  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
-    for (int e = 0; e < 3; ++e) {
-      const std::uint32_t a = mesh.triangles[t + e], b = mesh.triangles[t + (e + 1) % 3];
-      if (!edges.contains(edge_key(b, a))) out.push_back({a, b, static_cast<std::uint32_t>(t / 3)});
-    }
+// Edges of a mesh without their reverse in the same mesh: the polygon's outline and its holes, into `out`
+// (cleared first). A mesh of one triangle (most of a furnished model's polygons) is all outline; others look
+// up reversed edges in a sorted list, `scratch`: over a million meshes, allocations per edge or per mesh
+// would cost more than the search.
+void boundary_edges(const PolygonMesh& mesh, std::vector<BoundaryEdge>& out,
+                    std::vector<std::uint64_t>& scratch) {
+  const std::size_t count = mesh.triangles.size() / 3;
+  out.clear();
+  const auto each_edge = [&](auto&& visit) {
+    for (std::size_t t = 0; t < count; ++t)
+      for (int e = 0; e < 3; ++e)
+        visit(mesh.triangles[3 * t + e], mesh.triangles[3 * t + (e + 1) % 3], static_cast<std::uint32_t>(t));
+  };
+  if (count == 1) {
+    each_edge([&](std::uint32_t a, std::uint32_t b, std::uint32_t t) { out.push_back({a, b, t}); });
+    return;
   }
-  return out;
+  scratch.clear();
+  each_edge([&](std::uint32_t a, std::uint32_t b, std::uint32_t) { scratch.push_back(edge_key(a, b)); });
+  std::sort(scratch.begin(), scratch.end());
+  each_edge([&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
+    if (!std::binary_search(scratch.begin(), scratch.end(), edge_key(b, a))) out.push_back({a, b, t});
+  });
 }
 
 // Boundary vertices of all meshes in a hash grid of cubes of side `cell`: sorted (cell key, vertex) pairs.
@@ -180,13 +190,14 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
                   const SeamPass& pass, TJunctionStats& stats) {
   // Every mesh's boundary, and its boundary vertices numbered across the group with their mesh.
   std::vector<std::vector<BoundaryEdge>> edges(group.size());  // by place in the group
+  std::vector<std::uint64_t> scratch;
   std::vector<Vec3> points;
   std::vector<std::uint32_t> point_mesh;  // place in the group
   double edge_length_sum = 0.0;
   std::size_t edge_count = 0;
   for (std::uint32_t g = 0; g < group.size(); ++g) {
     const std::uint32_t m = group[g];
-    edges[g] = boundary_edges(meshes[m]);
+    boundary_edges(meshes[m], edges[g], scratch);
     if (pass.creases)
       std::erase_if(edges[g], [&](const BoundaryEdge& e) {
         return axial(meshes[m].vertices[e.a], meshes[m].vertices[e.b]);
@@ -295,15 +306,11 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   }
 }
 
-// A slanted boundary edge keyed by its line: direction up to sign in bins of kSeamNormalBin, and the line's
-// point nearest the origin in bins of kCreaseLineBin.
-struct LineEdge {
-  std::array<long long, 6> line;
-  std::uint32_t mesh = 0;
-  Vec3 a, b;
-};
+// A slanted boundary edge's line: direction up to sign in bins of kSeamNormalBin, and the line's point
+// nearest the origin in bins of kCreaseLineBin.
+using LineKey = std::array<long long, 6>;
 
-std::array<long long, 6> line_key(const Vec3& a, const Vec3& b) {
+LineKey line_key(const Vec3& a, const Vec3& b) {
   Vec3 u = glm::normalize(b - a);
   int lead = 0;  // up to sign, as the planes' normals below
   while (lead < 2 && std::abs(u[lead]) <= 0.25) ++lead;
@@ -314,6 +321,14 @@ std::array<long long, 6> line_key(const Vec3& a, const Vec3& b) {
           std::llround(nearest.y / kCreaseLineBin), std::llround(nearest.z / kCreaseLineBin)};
 }
 
+// A slanted boundary edge, sorted by the hash of its line: 24 bytes, where the key itself would make a
+// furnished model's millions of edges a sort of hundreds of megabytes. Equal hashes are checked by key.
+struct LineEdge {
+  std::uint64_t line_hash = 0;
+  std::uint32_t mesh = 0;
+  std::uint32_t a = 0, b = 0;  // the mesh's vertices
+};
+
 // Creases: where two planes meet along a slanted line, each side's corners on it go into the other's edge.
 // Only points on the line to double noise (corners both planes' intersections put there), so no point
 // leaves the plane it is inserted into by more than kSeamNoise. The edges are grouped by line first, and
@@ -322,42 +337,66 @@ std::array<long long, 6> line_key(const Vec3& a, const Vec3& b) {
 // model's small triangles' ends per cell (the conference room ran minutes).
 void repair_creases(std::vector<PolygonMesh>& meshes, double tolerance, TJunctionStats& stats) {
   std::vector<LineEdge> edges;
+  std::vector<BoundaryEdge> boundary;
+  std::vector<std::uint64_t> scratch;
   for (std::uint32_t m = 0; m < meshes.size(); ++m) {
     const PolygonMesh& mesh = meshes[m];
     if (!has_plane(mesh)) continue;
-    for (const BoundaryEdge& e : boundary_edges(mesh)) {
+    boundary_edges(mesh, boundary, scratch);
+    for (const BoundaryEdge& e : boundary) {
       const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
       if (axial(a, b) || !(glm::distance(a, b) > 2.0 * tolerance)) continue;
-      edges.push_back({line_key(a, b), m, a, b});
+      const LineKey line = line_key(a, b);
+      edges.push_back({hash_bytes(0, line.data(), sizeof(line)), m, e.a, e.b});
     }
   }
   std::sort(edges.begin(), edges.end(), [](const LineEdge& l, const LineEdge& r) {
-    return l.line != r.line ? l.line < r.line : l.mesh < r.mesh;
+    return l.line_hash != r.line_hash ? l.line_hash < r.line_hash : l.mesh < r.mesh;
   });
+  const auto end_of = [&](const LineEdge& e, bool second) -> const Vec3& {
+    return meshes[e.mesh].vertices[second ? e.b : e.a];
+  };
   // Does an end of `f` lie inside `e`, farther than the tolerance from its ends, in another plane?
   const auto inside = [&](const LineEdge& e, const LineEdge& f) {
     if (e.mesh == f.mesh || parallel(meshes[e.mesh], meshes[f.mesh])) return false;
-    const Vec3 d = e.b - e.a;
+    const Vec3& ea = end_of(e, false);
+    const Vec3 d = end_of(e, true) - ea;
     const double length = glm::length(d);
-    for (const Vec3& x : {f.a, f.b}) {
-      const double along = glm::dot(x - e.a, d) / length;
+    for (const Vec3& x : {end_of(f, false), end_of(f, true)}) {
+      const double along = glm::dot(x - ea, d) / length;
       if (along > tolerance && along < length - tolerance) return true;
     }
     return false;
   };
+  const auto joins = [&](std::span<const LineEdge> line) {
+    for (const LineEdge& e : line)
+      for (const LineEdge& f : line)
+        if (inside(e, f)) return true;
+    return false;
+  };
   const SeamPass across{.line_tolerance = kSeamNoise, .creases = true};
+  std::vector<LineEdge> same_line;
   std::vector<std::uint32_t> group;
   for (std::size_t first = 0, next = 0; first < edges.size(); first = next) {
     next = first + 1;
-    while (next < edges.size() && edges[next].line == edges[first].line) ++next;
-    bool joins = false;
-    for (std::size_t i = first; i < next && !joins; ++i)
-      for (std::size_t j = first; j < next && !joins; ++j) joins = inside(edges[i], edges[j]);
-    if (!joins) continue;
-    group.clear();
+    while (next < edges.size() && edges[next].line_hash == edges[first].line_hash) ++next;
+    if (!joins({edges.data() + first, next - first})) continue;
+    // Edges of one hash on different lines (a 64-bit collision) are repaired line by line.
+    std::vector<std::pair<LineKey, LineEdge>> keyed;
     for (std::size_t i = first; i < next; ++i)
-      if (group.empty() || group.back() != edges[i].mesh) group.push_back(edges[i].mesh);
-    repair_group(meshes, group, tolerance, across, stats);
+      keyed.emplace_back(line_key(end_of(edges[i], false), end_of(edges[i], true)), edges[i]);
+    std::stable_sort(keyed.begin(), keyed.end(),
+                     [](const auto& l, const auto& r) { return l.first < r.first; });
+    for (std::size_t from = 0, to = 0; from < keyed.size(); from = to) {
+      same_line.clear();
+      for (to = from; to < keyed.size() && keyed[to].first == keyed[from].first; ++to)
+        same_line.push_back(keyed[to].second);
+      if (!joins(same_line)) continue;
+      group.clear();
+      for (const LineEdge& e : same_line)
+        if (group.empty() || group.back() != e.mesh) group.push_back(e.mesh);
+      repair_group(meshes, group, tolerance, across, stats);
+    }
   }
 }
 
