@@ -160,8 +160,10 @@ std::vector<std::optional<Edge>> quad_partner_edges(const PolygonMesh& mesh) {
   return out;
 }
 
+// Along an axis: two coordinates the same to kAxialNoise.
 bool axial(const Vec3& a, const Vec3& b) {
-  return (a.x == b.x) + (a.y == b.y) + (a.z == b.z) >= 2;
+  const auto same = [](double p, double q) { return std::abs(p - q) <= kAxialNoise; };
+  return same(a.x, b.x) + same(a.y, b.y) + same(a.z, b.z) >= 2;
 }
 
 // A mesh of no area has no plane to keep a point in (a zero normal passes any plane test).
@@ -172,6 +174,59 @@ bool has_plane(const PolygonMesh& mesh) {
 // Normals a rounding from parallel, either facing: the same plane's direction.
 bool parallel(const PolygonMesh& a, const PolygonMesh& b) {
   return std::abs(glm::dot(a.normal, b.normal)) >= 1.0 - kSeamNormalBin;
+}
+
+// For each boundary edge of one mesh, the ends of the straight run of boundary edges around it: the outline
+// edge it was diced from. A diced edge's own line is off the outline edge's by up to kDicingPointNoise at
+// its dicing-point end, enough to land in another line bin than the neighbour's edge across the crease; the
+// run's ends are the outline's corners. A vertex with more than one boundary edge leaving or entering it
+// (two holes touching) ends the run.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> straight_runs(const PolygonMesh& mesh,
+                                                                   std::span<const BoundaryEdge> boundary) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> runs(boundary.size());
+  for (std::size_t i = 0; i < boundary.size(); ++i) runs[i] = {boundary[i].a, boundary[i].b};
+  if (mesh.triangles.size() <= 3) return runs;  // one triangle: every edge is an outline edge
+  // Boundary edges by start and by end vertex, as sorted (vertex, edge) lists; a vertex met twice is not
+  // followed.
+  constexpr std::uint32_t kNone = ~0u;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> from, to;
+  for (std::uint32_t i = 0; i < boundary.size(); ++i) {
+    from.emplace_back(boundary[i].a, i);
+    to.emplace_back(boundary[i].b, i);
+  }
+  std::sort(from.begin(), from.end());
+  std::sort(to.begin(), to.end());
+  const auto edge_at = [](const auto& list, std::uint32_t v) {
+    const auto it = std::lower_bound(list.begin(), list.end(), std::pair{v, 0u});
+    if (it == list.end() || it->first != v) return kNone;
+    return std::next(it) != list.end() && std::next(it)->first == v ? kNone : it->second;
+  };
+  // Does the vertex between edges p (into it) and n (out of it) lie inside the segment p.a -> n.b?
+  const auto straight = [&](std::uint32_t p, std::uint32_t n) {
+    if (p == kNone || n == kNone) return false;
+    const Vec3 &a = mesh.vertices[boundary[p].a], &v = mesh.vertices[boundary[p].b],
+               &b = mesh.vertices[boundary[n].b];
+    const Vec3 d = b - a;
+    const double length2 = glm::dot(d, d);
+    if (!(length2 > 0.0)) return false;
+    const double t = glm::dot(v - a, d) / length2;
+    return t > 0.0 && t < 1.0 && glm::distance(v, a + d * t) <= kDicingPointNoise;
+  };
+  for (std::uint32_t i = 0; i < boundary.size(); ++i) {
+    std::uint32_t first = i, last = i;
+    for (std::size_t step = 0; step < boundary.size(); ++step) {
+      const std::uint32_t p = edge_at(to, boundary[first].a);
+      if (p == i || !straight(p, first)) break;
+      first = p;
+    }
+    for (std::size_t step = 0; step < boundary.size(); ++step) {
+      const std::uint32_t n = edge_at(from, boundary[last].b);
+      if (n == i || !straight(last, n)) break;
+      last = n;
+    }
+    runs[i] = {boundary[first].a, boundary[last].b};
+  }
+  return runs;
 }
 
 // Which seams a repair pass closes.
@@ -190,6 +245,9 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
                   const SeamPass& pass, TJunctionStats& stats) {
   // Every mesh's boundary, and its boundary vertices numbered across the group with their mesh.
   std::vector<std::vector<BoundaryEdge>> edges(group.size());  // by place in the group
+  // Across creases, each edge's outline edge (the ends of its straight run): a point goes in where it lies
+  // on that line, as the corners both planes' intersections put there do, not only near the diced edge.
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> outline(group.size());
   std::vector<std::uint64_t> scratch;
   std::vector<Vec3> points;
   std::vector<std::uint32_t> point_mesh;  // place in the group
@@ -198,10 +256,18 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   for (std::uint32_t g = 0; g < group.size(); ++g) {
     const std::uint32_t m = group[g];
     boundary_edges(meshes[m], edges[g], scratch);
-    if (pass.creases)
-      std::erase_if(edges[g], [&](const BoundaryEdge& e) {
-        return axial(meshes[m].vertices[e.a], meshes[m].vertices[e.b]);
-      });
+    if (pass.creases) {
+      auto runs = straight_runs(meshes[m], edges[g]);
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < edges[g].size(); ++i) {
+        if (axial(meshes[m].vertices[edges[g][i].a], meshes[m].vertices[edges[g][i].b])) continue;
+        edges[g][kept] = edges[g][i];
+        runs[kept++] = runs[i];
+      }
+      edges[g].resize(kept);
+      runs.resize(kept);
+      outline[g] = std::move(runs);
+    }
     std::vector<std::uint32_t> on_boundary;
     for (const auto& e : edges[g]) {
       on_boundary.push_back(e.a);
@@ -229,11 +295,17 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
   for (std::uint32_t g = 0; g < group.size(); ++g) {
     PolygonMesh& mesh = meshes[group[g]];
     if (!has_plane(mesh)) continue;
-    // Per triangle, in list order: the edges to split and the points on each, as this mesh's vertices.
+    // Per triangle, in list order: the edges to split and the points on each, numbered after this mesh's
+    // vertices (`base` + global point) until a split is taken and they become vertices of it.
     std::map<std::uint32_t, std::vector<std::pair<Edge, std::vector<std::uint32_t>>>> splits;
-    std::unordered_map<std::uint32_t, std::uint32_t> copy_of;  // global point -> this mesh's vertex
-    for (const auto& e : edges[g]) {
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    for (std::size_t i = 0; i < edges[g].size(); ++i) {
+      const BoundaryEdge& e = edges[g][i];
       const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
+      // The line a point must lie on: the edge's own, or across a crease its outline edge's.
+      const Vec3 line_a = pass.creases ? mesh.vertices[outline[g][i].first] : a;
+      const Vec3 line_d = pass.creases ? mesh.vertices[outline[g][i].second] - line_a : b - a;
+      const double line_length2 = glm::dot(line_d, line_d);
       // An edge along an axis keeps two coordinates, which float rounds alike for every point on it: its
       // T-junctions cannot open. Splitting there would only add slivers and vertices.
       if (axial(a, b)) continue;
@@ -253,7 +325,8 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
         const Vec3& x = points[p];
         const double t = glm::dot(x - a, d) / length2;
         if (t * length <= tolerance || (1.0 - t) * length <= tolerance) continue;
-        if (glm::distance(x, a + d * t) > pass.line_tolerance) continue;
+        const double on_line = glm::dot(x - line_a, line_d) / line_length2;
+        if (glm::distance(x, line_a + line_d * on_line) > pass.line_tolerance) continue;
         if (std::abs(glm::dot(x - a, mesh.normal)) > kSeamNoise) continue;
         found.push_back({t, p});
       }
@@ -270,16 +343,9 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
                                 return glm::distance(points[l.vertex], points[r.vertex]) <= kSeamNoise;
                               }),
                   found.end());
-      std::vector<std::uint32_t> local;
-      for (const auto& f : found) {
-        auto [it, fresh] = copy_of.try_emplace(f.vertex, static_cast<std::uint32_t>(mesh.vertices.size()));
-        if (fresh) {
-          mesh.vertices.push_back(points[f.vertex]);
-          ++stats.vertices_inserted;
-        }
-        local.push_back(it->second);
-      }
-      splits[e.triangle].push_back({{e.a, e.b}, std::move(local)});
+      std::vector<std::uint32_t> numbered;
+      for (const auto& f : found) numbered.push_back(base + f.vertex);
+      splits[e.triangle].push_back({{e.a, e.b}, std::move(numbered)});
     }
     if (splits.empty()) continue;
 
@@ -287,9 +353,33 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
     std::vector<Triangle> in_place(count), appended;
     for (std::size_t t = 0; t < count; ++t) in_place[t] = triangle_at(mesh, t);
     const auto partners = quad_partner_edges(mesh);
+    const auto at = [&](std::uint32_t v) -> const Vec3& {
+      return v < base ? mesh.vertices[v] : points[v - base];
+    };
+    std::unordered_map<std::uint32_t, std::uint32_t> copy_of;  // global point -> this mesh's vertex
     for (const auto& [t, edge_points] : splits) {
       std::vector<Triangle> pieces{in_place[t]};
-      for (const auto& [edge, at] : edge_points) split_edge(pieces, edge.first, edge.second, at);
+      for (const auto& [edge, points_on] : edge_points)
+        split_edge(pieces, edge.first, edge.second, points_on);
+      // A point off the edge by up to the line tolerance folds a piece over where the triangle is thinner
+      // than that (a sliver beside a column cut): such a triangle keeps its T-junction.
+      const bool folds = std::any_of(pieces.begin(), pieces.end(), [&](const Triangle& p) {
+        return !(glm::dot(glm::cross(at(p[1]) - at(p[0]), at(p[2]) - at(p[0])), mesh.normal) > 0.0);
+      });
+      if (folds) {
+        ++stats.splits_refused;
+        continue;
+      }
+      for (Triangle& piece : pieces)
+        for (std::uint32_t& v : piece) {
+          if (v < base) continue;
+          auto [it, fresh] = copy_of.try_emplace(v - base, static_cast<std::uint32_t>(mesh.vertices.size()));
+          if (fresh) {
+            mesh.vertices.push_back(points[v - base]);
+            ++stats.vertices_inserted;
+          }
+          v = it->second;
+        }
       const auto& partner = partners[t];
       std::size_t keep = 0;
       if (partner)
@@ -321,20 +411,22 @@ LineKey line_key(const Vec3& a, const Vec3& b) {
           std::llround(nearest.y / kCreaseLineBin), std::llround(nearest.z / kCreaseLineBin)};
 }
 
-// A slanted boundary edge, sorted by the hash of its line: 24 bytes, where the key itself would make a
+// A slanted boundary edge, sorted by the hash of its line: 32 bytes, where the key itself would make a
 // furnished model's millions of edges a sort of hundreds of megabytes. Equal hashes are checked by key.
 struct LineEdge {
   std::uint64_t line_hash = 0;
   std::uint32_t mesh = 0;
-  std::uint32_t a = 0, b = 0;  // the mesh's vertices
+  std::uint32_t a = 0, b = 0;            // the mesh's vertices
+  std::uint32_t line_a = 0, line_b = 0;  // the ends of the straight run of boundary edges it is part of
 };
 
 // Creases: where two planes meet along a slanted line, each side's corners on it go into the other's edge.
-// Only points on the line to double noise (corners both planes' intersections put there), so no point
-// leaves the plane it is inserted into by more than kSeamNoise. The edges are grouped by line first, and
+// Only points on the receiving edge's outline edge to double noise (corners both planes' intersections put
+// there), so no point leaves the plane it is inserted into by more than kSeamNoise; a dicing point rounded
+// off the line stays out. The edges are grouped by the line of the outline edge they were diced from, and
 // only the meshes of a line where an end of one mesh's edge lies inside another plane's edge are repaired
-// together: over the whole model at once, a grid of every slanted end held thousands of a furnished
-// model's small triangles' ends per cell (the conference room ran minutes).
+// together: over the whole model at once, a grid of every slanted end held thousands of a furnished model's
+// small triangles' ends per cell (the conference room ran minutes).
 void repair_creases(std::vector<PolygonMesh>& meshes, double tolerance, TJunctionStats& stats) {
   std::vector<LineEdge> edges;
   std::vector<BoundaryEdge> boundary;
@@ -343,11 +435,14 @@ void repair_creases(std::vector<PolygonMesh>& meshes, double tolerance, TJunctio
     const PolygonMesh& mesh = meshes[m];
     if (!has_plane(mesh)) continue;
     boundary_edges(mesh, boundary, scratch);
-    for (const BoundaryEdge& e : boundary) {
+    const auto runs = straight_runs(mesh, boundary);
+    for (std::size_t i = 0; i < boundary.size(); ++i) {
+      const BoundaryEdge& e = boundary[i];
       const Vec3 a = mesh.vertices[e.a], b = mesh.vertices[e.b];
       if (axial(a, b) || !(glm::distance(a, b) > 2.0 * tolerance)) continue;
-      const LineKey line = line_key(a, b);
-      edges.push_back({hash_bytes(0, line.data(), sizeof(line)), m, e.a, e.b});
+      const auto [line_a, line_b] = runs[i];
+      const LineKey line = line_key(mesh.vertices[line_a], mesh.vertices[line_b]);
+      edges.push_back({hash_bytes(0, line.data(), sizeof(line)), m, e.a, e.b, line_a, line_b});
     }
   }
   std::sort(edges.begin(), edges.end(), [](const LineEdge& l, const LineEdge& r) {
@@ -384,7 +479,9 @@ void repair_creases(std::vector<PolygonMesh>& meshes, double tolerance, TJunctio
     // Edges of one hash on different lines (a 64-bit collision) are repaired line by line.
     std::vector<std::pair<LineKey, LineEdge>> keyed;
     for (std::size_t i = first; i < next; ++i)
-      keyed.emplace_back(line_key(end_of(edges[i], false), end_of(edges[i], true)), edges[i]);
+      keyed.emplace_back(line_key(meshes[edges[i].mesh].vertices[edges[i].line_a],
+                                  meshes[edges[i].mesh].vertices[edges[i].line_b]),
+                         edges[i]);
     std::stable_sort(keyed.begin(), keyed.end(),
                      [](const auto& l, const auto& r) { return l.first < r.first; });
     for (std::size_t from = 0, to = 0; from < keyed.size(); from = to) {
@@ -430,21 +527,38 @@ TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double toler
   std::sort(keys.begin(), keys.end(), [](const Key& l, const Key& r) {
     return l.normal != r.normal ? l.normal < r.normal : l.offset < r.offset;
   });
+  // Planes with more than one mesh, as runs of `keys`.
+  std::vector<std::pair<std::size_t, std::size_t>> planes;
+  for (std::size_t first = 0, next = 0; first < keys.size(); first = next) {
+    for (next = first + 1; next < keys.size() && keys[next].normal == keys[next - 1].normal &&
+                           keys[next].offset - keys[next - 1].offset <= kSeamNoise;
+         ++next) {
+    }
+    if (next - first > 1) planes.emplace_back(first, next);
+  }
   const SeamPass in_plane{.line_tolerance = tolerance};
   std::vector<std::uint32_t> group;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    const bool joins =
-        i > 0 && keys[i].normal == keys[i - 1].normal && keys[i].offset - keys[i - 1].offset <= kSeamNoise;
-    if (!joins) {
-      if (group.size() > 1) repair_group(meshes, group, tolerance, in_plane, stats);
-      group.clear();
-    }
-    group.push_back(keys[i].mesh);
-  }
-  if (group.size() > 1) repair_group(meshes, group, tolerance, in_plane, stats);
+  const auto repair_plane = [&](std::pair<std::size_t, std::size_t> plane) {
+    group.clear();
+    for (std::size_t i = plane.first; i < plane.second; ++i) group.push_back(keys[i].mesh);
+    repair_group(meshes, group, tolerance, in_plane, stats);
+  };
+  for (const auto& plane : planes) repair_plane(plane);
   const std::size_t in_plane_inserted = stats.vertices_inserted;
+  std::vector<std::size_t> vertex_counts(meshes.size());
+  for (std::size_t m = 0; m < meshes.size(); ++m) vertex_counts[m] = meshes[m].vertices.size();
   repair_creases(meshes, tolerance, stats);
-  stats.crease_vertices_inserted = stats.vertices_inserted - in_plane_inserted;
+  const std::size_t crease_inserted = stats.vertices_inserted - in_plane_inserted;
+  // A point a crease gave one mesh lies on the seam with its coplanar neighbours too, when that seam runs
+  // along the crease (two floors meeting under a wall's slanted foot): those planes are repaired again.
+  if (crease_inserted > 0)
+    for (const auto& plane : planes)
+      for (std::size_t i = plane.first; i < plane.second; ++i)
+        if (meshes[keys[i].mesh].vertices.size() != vertex_counts[keys[i].mesh]) {
+          repair_plane(plane);
+          break;
+        }
+  stats.crease_vertices_inserted = crease_inserted;
   return stats;
 }
 

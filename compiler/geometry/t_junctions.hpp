@@ -35,17 +35,34 @@ inline constexpr double kSeamNormalBin = 1e-6;
 // joined, and their crease keeps its crack.
 inline constexpr double kCreaseLineBin = 1e-6;
 
+// How far a dicing point on a slanted outline edge may lie off that edge (metres): the mesher places it from
+// Clipper's integer coordinates (1 um units) and keeps it there, within one unit of the edge in the plane's
+// frame; twice that for the corners' own rounding. Across a crease, consecutive boundary edges whose shared
+// vertex lies this close to the line through their far ends are one outline edge: they are keyed, and a
+// point is measured, by that edge's line (its corners), not by their own.
+inline constexpr double kDicingPointNoise = 2e-6;
+
+// Seams along an axis are left as they are: the two coordinates such an edge keeps are kept by every point on
+// it, and float rounds them alike, so its T-junctions cannot open. Constant to this (metres), not bit for
+// bit: corners the Quake reader's CSG meets in double differ by about 1e-15 m where they should agree (the
+// mesher keeps such coordinates to the same noise), and an edge read as slanted in its coarse form but axial
+// once diced took a neighbour's corner in one form only, so the coarse form could not be drawn from the
+// diced vertices.
+inline constexpr double kAxialNoise = 1e-9;
+
 struct TJunctionStats {
   std::size_t vertices_inserted = 0;         // vertex copies added to edges
   std::size_t triangles_split = 0;           // triangles replaced by two or more
   std::size_t crease_vertices_inserted = 0;  // of vertices_inserted, across a crease between two planes
+  std::size_t splits_refused = 0;            // triangles left whole: a piece would face away
 };
 
 // Inserts into each mesh's boundary edges (edges without a twin in their own mesh) the boundary vertices of
 // the other coplanar meshes that lie within `tolerance` (metres) of the edge, farther than `tolerance` from
 // both of its ends and within kSeamNoise of the mesh's plane; then, into slanted boundary edges, the ends of
-// other meshes' slanted boundary edges on the edge's line (within kSeamNoise of it), as far from its ends. An
-// inserted vertex is an exact copy of the other mesh's vertex, so both sides round alike. A split triangle
+// other meshes' slanted boundary edges on the line of the outline edge it was diced from (within kSeamNoise
+// of it), as far from its ends, and the coplanar meshes of a mesh that took such a point are repaired again.
+// An inserted vertex is an exact copy of the other mesh's vertex, so both sides round alike. A split triangle
 // keeps its place in the list with the piece that holds the edge it shares with its quad partner (paired as
 // the renderer pairs them to re-split quads), so pairs stay pairs; the other pieces go to the end.
 // Orientation is kept. Meshes with no neighbours within tolerance are left exactly as they are.

@@ -238,14 +238,15 @@ StageOutcome MeshStage::run(CompileState& s, std::uint64_t) {
       fmt::format(
           "{} vertices {} triangles grid {} m; light refinement {} of {} edges split ({} along hung "
           "panels' outlines) in {} levels ({} shadow rays); coarse {} triangles ({} polygons kept diced); "
-          "T-junctions {} vertices ({} across creases) into {} triangles (coarse {} into {}, {} left "
-          "unrepaired); "
+          "T-junctions {} vertices ({} across creases) into {} triangles, {} left whole (a piece would "
+          "fold) (coarse {} into {}, {} left unrepaired); "
           "textures {} ({} MiB)",
           out.vertices.size(), out.indices.size() / 3, s.config.lighting.grid, refined.edges_split,
           refined.edges_tested, refined.outline_splits, refined.levels, refined.shadow_rays,
           out.coarse_indices.size() / 3, coarse_fallbacks_, seams.vertices_inserted,
-          seams.crease_vertices_inserted, seams.triangles_split, coarse_seams.vertices_inserted,
-          coarse_seams.triangles_split, coarse_unrepaired_, out.textures.size(), out.texels.size() >> 20));
+          seams.crease_vertices_inserted, seams.triangles_split, seams.splits_refused,
+          coarse_seams.vertices_inserted, coarse_seams.triangles_split, coarse_unrepaired_,
+          out.textures.size(), out.texels.size() >> 20));
 }
 
 }  // namespace

@@ -304,9 +304,97 @@ TEST(TJunctions, CreaseCornersGoIntoTheEdgeAcrossThePlanes) {
   EXPECT_EQ(repair_t_junctions(off, kTolerance).vertices_inserted, 1u);
 }
 
+// E1M1's sky over a slanted wall (polygon 1899 on walls 2586 and 2587): the sky is diced, and its dicing
+// point on the slanted edge lies off the edge's line by Clipper's rounding (about 3e-7 m), so the diced
+// edges' own lines miss the wall's corner on the true line. Grouped by the outline edge they were diced
+// from, the wall's corner goes into the diced edge; the sky's dicing point, off the wall's plane, stays out.
+TEST(TJunctions, CreaseCornersGoIntoADicedEdge) {
+  const double z = 8.064;
+  const Vec3 c0{-2.856, -0.8784, z}, c1{-2.2464, 0.1376, z}, corner{-2.49024, -0.2688, z};
+  Polygon sky;
+  sky.vertices = {{-2.856, 0.1376, z}, c0, c1};  // from the corner off the slanted edge, as E1M1 has it
+  const Vec3 up{0, 0, -1.2};
+  std::vector<PolygonMesh> meshes{mesh_polygon(sky, 1.0),
+                                  mesh_polygon(quad(c0, corner, corner + up, c0 + up), 0.0),
+                                  mesh_polygon(quad(corner, c1, c1 + up, corner + up), 0.0)};
+  // The case this test is about: a dicing point on the slanted edge, off its line by more than double noise.
+  const Vec3 d = glm::normalize(c1 - c0);
+  std::size_t off_line = 0;
+  for (const Vec3& v : meshes[0].vertices) {
+    const Vec3 foot = c0 + d * glm::dot(v - c0, d);
+    const double t = glm::dot(v - c0, d) / glm::distance(c0, c1);
+    off_line += t > 0.01 && t < 0.99 && glm::distance(v, foot) > kSeamNoise && glm::distance(v, foot) < 1e-6;
+  }
+  ASSERT_EQ(off_line, 1u);
+  const double sky_area = area(meshes[0]);
+  const std::vector<Vec3> wall = meshes[2].vertices;
+  const TJunctionStats stats = repair_t_junctions(meshes, kTolerance);
+  EXPECT_EQ(stats.crease_vertices_inserted, 1u);
+  std::size_t corners = 0;
+  for (const auto& [a, b] : outline_edges(meshes[0]))
+    corners += (meshes[0].vertices[a] == corner) + (meshes[0].vertices[b] == corner);
+  EXPECT_EQ(corners, 2u) << "the wall's corner ends two of the sky's outline edges";
+  EXPECT_EQ(meshes[2].vertices, wall) << "the sky's dicing point is off the wall's plane";
+  // The corner lies on the true line, the diced edge up to the dicing point's rounding off it.
+  EXPECT_NEAR(area(meshes[0]), sky_area, kDicingPointNoise * outline_length(meshes[0]));
+  EXPECT_TRUE(all_counter_clockwise(meshes[0]));
+}
+
 // Coplanar meshes are grouped by normal up to sign: on a wall at 45 degrees two components are equal, and
 // normals a rounding apart must still land in one group (choosing the sign by the largest component split
 // them).
+// An edge along y whose corners' x differ by a rounding (CSG's 1e-15 m) is along an axis, as one with equal
+// corners: a neighbour's corner on it is not inserted (float keeps both coordinates for every point on
+// it). Its coarse form and its diced form, whose dicing points keep x exactly, then agree. An edge a
+// micrometre off the axis is slanted and takes the corner.
+TEST(TJunctions, EdgesAlongAnAxisToARoundingAreAxial) {
+  auto inserted_with_skew = [&](double skew) {
+    PolygonMesh left;  // its right edge from (1, 0) to (1 + skew, 2)
+    left.vertices = {{0, 0, 0}, {1, 0, 0}, {1 + skew, 2, 0}, {0, 2, 0}};
+    left.triangles = {0, 1, 2, 0, 2, 3};
+    PolygonMesh right;  // two squares' corner at the edge's middle
+    right.vertices = {{1 + skew / 2, 1, 0}, {3, 1, 0}, {3, 2, 0}, {1 + skew, 2, 0}};
+    right.triangles = {0, 1, 2, 0, 2, 3};
+    std::vector<PolygonMesh> meshes{left, right};
+    return repair_t_junctions(meshes, kTolerance).vertices_inserted;
+  };
+  EXPECT_EQ(inserted_with_skew(0.0), 0u);
+  EXPECT_EQ(inserted_with_skew(1e-15), 0u);
+  EXPECT_EQ(inserted_with_skew(0.5 * kAxialNoise), 0u);
+  EXPECT_EQ(inserted_with_skew(2.0 * kAxialNoise), 1u);
+  EXPECT_EQ(inserted_with_skew(1e-6), 1u);
+}
+
+// A point within the weld distance of an edge but beyond the apex of a triangle thinner than that (a sliver
+// beside a column cut) would fold a piece over: the triangle stays whole and keeps its T-junction. The same
+// point goes into the edge of a triangle that is not that thin.
+TEST(TJunctions, ASplitThatWouldFoldATriangleIsRefused) {
+  const Vec3 a{0, 0, 0}, b{4, 1, 0};
+  const Vec3 inward = glm::normalize(Vec3(-1, 4, 0));  // to the left of a -> b, into the triangle
+  const Vec3 x = a + (b - a) * 0.25 + inward * (0.5 * kTolerance);
+  auto repaired_with_apex_at = [&](double height) {
+    PolygonMesh triangle;
+    triangle.vertices = {a, b, (a + b) * 0.5 + inward * height};
+    triangle.triangles = {0, 1, 2};
+    PolygonMesh other;  // below the edge, with a corner at x
+    other.vertices = {x, x + Vec3(1, -3, 0), x + Vec3(2, -3, 0)};
+    other.triangles = {0, 1, 2};
+    std::vector<PolygonMesh> meshes{triangle, other};
+    const TJunctionStats stats = repair_t_junctions(meshes, kTolerance);
+    EXPECT_TRUE(all_counter_clockwise(meshes[0]));
+    EXPECT_NEAR(area(meshes[0]), area(triangle), kTolerance * outline_length(triangle));
+    return std::pair{stats, meshes[0]};
+  };
+  const auto [thin, kept] = repaired_with_apex_at(1e-6);
+  EXPECT_EQ(thin.splits_refused, 1u);
+  EXPECT_EQ(thin.vertices_inserted, 0u);
+  EXPECT_EQ(kept.triangles.size(), 3u);
+  const auto [fat, split] = repaired_with_apex_at(1.0);
+  EXPECT_EQ(fat.splits_refused, 0u);
+  EXPECT_EQ(fat.vertices_inserted, 1u);
+  EXPECT_EQ(split.triangles.size(), 6u);
+}
+
 TEST(TJunctions, DiagonalWallNormalsARoundingApartStillMeet) {
   PolygonMesh a;
   a.vertices = {{0, 0, 0}, {2, 2, 0}, {0, 0, 2}};
