@@ -185,7 +185,11 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> straight_runs(const Polygon
                                                                    std::span<const BoundaryEdge> boundary) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> runs(boundary.size());
   for (std::size_t i = 0; i < boundary.size(); ++i) runs[i] = {boundary[i].a, boundary[i].b};
-  if (mesh.triangles.size() <= 3) return runs;  // one triangle: every edge is an outline edge
+  // One triangle: every edge is an outline edge. No slanted edge: no crease to key (most of a building).
+  const bool slanted = std::any_of(boundary.begin(), boundary.end(), [&](const BoundaryEdge& e) {
+    return !axial(mesh.vertices[e.a], mesh.vertices[e.b]);
+  });
+  if (mesh.triangles.size() <= 3 || !slanted) return runs;
   // Boundary edges by start and by end vertex, as sorted (vertex, edge) lists; a vertex met twice is not
   // followed.
   constexpr std::uint32_t kNone = ~0u;
@@ -203,7 +207,6 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> straight_runs(const Polygon
   };
   // Does the vertex between edges p (into it) and n (out of it) lie inside the segment p.a -> n.b?
   const auto straight = [&](std::uint32_t p, std::uint32_t n) {
-    if (p == kNone || n == kNone) return false;
     const Vec3 &a = mesh.vertices[boundary[p].a], &v = mesh.vertices[boundary[p].b],
                &b = mesh.vertices[boundary[n].b];
     const Vec3 d = b - a;
@@ -212,19 +215,25 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> straight_runs(const Polygon
     const double t = glm::dot(v - a, d) / length2;
     return t > 0.0 && t < 1.0 && glm::distance(v, a + d * t) <= kDicingPointNoise;
   };
+  // The edge after each one around its loop, and whether an edge goes on straight from the one before.
+  std::vector<std::uint32_t> next(boundary.size(), kNone);
+  std::vector<char> continues(boundary.size(), 0);
   for (std::uint32_t i = 0; i < boundary.size(); ++i) {
-    std::uint32_t first = i, last = i;
-    for (std::size_t step = 0; step < boundary.size(); ++step) {
-      const std::uint32_t p = edge_at(to, boundary[first].a);
-      if (p == i || !straight(p, first)) break;
-      first = p;
+    const std::uint32_t n = edge_at(from, boundary[i].b);
+    if (n == kNone || edge_at(to, boundary[i].b) != i) continue;
+    next[i] = n;
+    continues[n] = straight(i, n);
+  }
+  // Each run from the edge that starts it, once: linear in the boundary. A loop with no start (all of it
+  // straight: no area) keeps each edge's own ends.
+  for (std::uint32_t first = 0; first < boundary.size(); ++first) {
+    if (continues[first]) continue;
+    std::uint32_t last = first;
+    while (next[last] != kNone && next[last] != first && continues[next[last]]) last = next[last];
+    for (std::uint32_t k = first;; k = next[k]) {
+      runs[k] = {boundary[first].a, boundary[last].b};
+      if (k == last) break;
     }
-    for (std::size_t step = 0; step < boundary.size(); ++step) {
-      const std::uint32_t n = edge_at(from, boundary[last].b);
-      if (n == i || !straight(last, n)) break;
-      last = n;
-    }
-    runs[i] = {boundary[first].a, boundary[last].b};
   }
   return runs;
 }
