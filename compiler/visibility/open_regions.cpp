@@ -238,7 +238,9 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
         while (!stack.empty()) {
           const auto v = stack.back();
           stack.pop_back();
-          for (int d = 0; d < 6; ++d) {
+          // Neighbours along z first, x last: the stack pops x's next, so the fill runs along rows of
+          // consecutive voxels rather than across planes a grid's slice apart (a cache miss each).
+          for (int d = 5; d >= 0; --d) {
             int w[3] = {v[0], v[1], v[2]};
             w[d / 2] += d % 2 ? 1 : -1;
             const int x = w[0], y = w[1], z = w[2];
