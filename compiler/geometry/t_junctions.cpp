@@ -160,6 +160,15 @@ std::vector<std::optional<Edge>> quad_partner_edges(const PolygonMesh& mesh) {
   return out;
 }
 
+// A unit vector up to sign, for keys that treat both facings alike: its first component clearly away from
+// zero (a unit vector has one of at least 0.577) made positive. Not the largest one: at 45 degrees two are
+// equal, and noise would pick either.
+Vec3 up_to_sign(const Vec3& u) {
+  int lead = 0;
+  while (lead < 2 && std::abs(u[lead]) <= 0.25) ++lead;
+  return u[lead] < 0.0 ? -u : u;
+}
+
 // Along an axis: two coordinates the same to kAxialNoise.
 bool axial(const Vec3& a, const Vec3& b) {
   const auto same = [](double p, double q) { return std::abs(p - q) <= kAxialNoise; };
@@ -410,10 +419,7 @@ void repair_group(std::vector<PolygonMesh>& meshes, std::span<const std::uint32_
 using LineKey = std::array<long long, 6>;
 
 LineKey line_key(const Vec3& a, const Vec3& b) {
-  Vec3 u = glm::normalize(b - a);
-  int lead = 0;  // up to sign, as the planes' normals below
-  while (lead < 2 && std::abs(u[lead]) <= 0.25) ++lead;
-  if (u[lead] < 0.0) u = -u;
+  const Vec3 u = up_to_sign(glm::normalize(b - a));
   const Vec3 nearest = a - u * glm::dot(a, u);
   return {std::llround(u.x / kSeamNormalBin),       std::llround(u.y / kSeamNormalBin),
           std::llround(u.z / kSeamNormalBin),       std::llround(nearest.x / kCreaseLineBin),
@@ -522,12 +528,7 @@ TJunctionStats repair_t_junctions(std::vector<PolygonMesh>& meshes, double toler
   for (std::uint32_t m = 0; m < meshes.size(); ++m) {
     const PolygonMesh& mesh = meshes[m];
     if (mesh.triangles.empty()) continue;
-    // Up to sign: the first component clearly away from zero (a unit vector has one of at least 0.577) is
-    // made positive. Not the largest one: at 45 degrees two are equal, and noise would pick either.
-    Vec3 n = mesh.normal;
-    int lead = 0;
-    while (lead < 2 && std::abs(n[lead]) <= 0.25) ++lead;
-    if (n[lead] < 0.0) n = -n;
+    const Vec3 n = up_to_sign(mesh.normal);
     keys.push_back({{std::llround(n.x / kSeamNormalBin), std::llround(n.y / kSeamNormalBin),
                      std::llround(n.z / kSeamNormalBin)},
                     glm::dot(n, mesh.vertices[mesh.triangles[0]]),
