@@ -17,9 +17,6 @@ pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)
 pkg_check_modules(PIXMAN REQUIRED IMPORTED_TARGET pixman-1)  # the half-resolution level's CPU upscale
 find_package(assimp REQUIRED)  # mesh import (OBJ, glTF, 3DS...); Debian ships its CMake config
 pkg_check_modules(SYSTEMD REQUIRED IMPORTED_TARGET libsystemd)
-# jemalloc: the `walk` command's malloc (its stages allocate many small windings and clipper paths from
-# every thread; docs/DESIGN-NOTES.md has the measured choice).
-pkg_check_modules(JEMALLOC REQUIRED IMPORTED_TARGET jemalloc)
 
 if(WALK_WITH_OSMESA)
   pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)

@@ -14,8 +14,6 @@ packages=(
   libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libpolyclipping-dev libpng-dev libjpeg-dev
   # parallel loops of the compiler stages, and the inputs-unchanged hashes
   libtbb-dev libxxhash-dev
-  # the compiler's malloc (many small allocations from every thread)
-  libjemalloc-dev
   # levels of detail of clusters for moving frames; the half-resolution level's CPU upscale
   libmeshoptimizer-dev libpixman-1-dev
   # tests and benchmarks
