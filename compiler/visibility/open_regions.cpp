@@ -240,17 +240,20 @@ int label_cell(Grid& g, const Box& box, std::span<const SolidVolume> solids, std
           stack.pop_back();
           // Neighbours along z first, x last: the stack pops x's next, so the fill runs along rows of
           // consecutive voxels rather than across planes a grid's slice apart (a cache miss each).
+          // The neighbour's and the shared face's coordinates are computed whole, not by writing one
+          // element of a copy: reading the copy back after a one-element store stalled the store buffer
+          // (a third of this function's samples under perf on E1M1).
           for (int d = 5; d >= 0; --d) {
-            int w[3] = {v[0], v[1], v[2]};
-            w[d / 2] += d % 2 ? 1 : -1;
-            const int x = w[0], y = w[1], z = w[2];
+            const int a = d / 2;
+            const bool up = d % 2 != 0;
+            const int step = up ? 1 : -1;
+            const int x = v[0] + (a == 0 ? step : 0), y = v[1] + (a == 1 ? step : 0),
+                      z = v[2] + (a == 2 ? step : 0);
             if (x < 0 || y < 0 || z < 0 || x >= g.n[0] || y >= g.n[1] || z >= g.n[2]) continue;
             auto& r = g.region[g.index(x, y, z)];
             if (r != kUnlabelled) continue;
             // The shared face's lowest corner: the far voxel's when stepping up the axis, else this one's.
-            const int a = d / 2;
-            int f[3] = {v[0], v[1], v[2]};
-            if (d % 2) ++f[a];
+            const int f[3] = {up ? x : v[0], up ? y : v[1], up ? z : v[2]};
             if (blocked[std::size_t(a)][corner(f[0], f[1], f[2])]) continue;
             if (seam_closed(a, f)) continue;
             r = parts;
