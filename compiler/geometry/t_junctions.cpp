@@ -44,6 +44,9 @@ void boundary_edges(const PolygonMesh& mesh, std::vector<BoundaryEdge>& out,
         visit(mesh.triangles[3 * t + e], mesh.triangles[3 * t + (e + 1) % 3], static_cast<std::uint32_t>(t));
   };
   if (count == 1) {
+    // A repeated index leaves no area and no boundary: its edges a->b and b->a cancel, as below.
+    const std::uint32_t* corners = mesh.triangles.data();
+    if (corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0]) return;
     each_edge([&](std::uint32_t a, std::uint32_t b, std::uint32_t t) { out.push_back({a, b, t}); });
     return;
   }

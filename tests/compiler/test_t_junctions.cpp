@@ -431,6 +431,16 @@ TEST(TJunctions, DegenerateInputsAreLeftAlone) {
   EXPECT_EQ(s.vertices_inserted, 1u);
   EXPECT_NEAR(area(meshes[1]), 2.0, 1e-12);
   EXPECT_TRUE(all_counter_clockwise(meshes[1]));
+  // A triangle with a repeated index has no boundary, alone in its mesh or beside another triangle: its
+  // corner on `real`'s diagonal goes into no edge.
+  for (const std::vector<std::uint32_t>& indices :
+       {std::vector<std::uint32_t>{0, 0, 1}, std::vector<std::uint32_t>{0, 1, 1, 2, 3, 4}}) {
+    PolygonMesh repeated;
+    repeated.vertices = {{1, 1, 0}, {5, 5, 0}, {10, 0, 0}, {11, 0, 0}, {11, 1, 0}};
+    repeated.triangles = indices;
+    std::vector<PolygonMesh> pair{repeated, real};
+    EXPECT_EQ(repair_t_junctions(pair, kTolerance).vertices_inserted, 0u) << indices.size() << " indices";
+  }
   // Several meshes offering the same point: one copy.
   PolygonMesh target;
   target.vertices = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}};
