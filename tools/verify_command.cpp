@@ -97,6 +97,10 @@ int verify(const VerifyArgs& args) {
   // 21-cell house are over a gigabyte of ids).
   const bool keep_images = !args.sweep.empty();
   const auto pvs = bundle_pvs(*b);
+  // Without clusters PVSL lists polygons, and the polygon ratio is the only one.
+  const std::vector<std::uint32_t> cluster_of =
+      b->clusters().empty() ? std::vector<std::uint32_t>()
+                            : cluster_of_polygons(b->polygons().size(), b->clusters(), b->cluster_polygons());
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<CellViews> views;
   std::vector<VerifyRow> rows;
@@ -119,6 +123,10 @@ int verify(const VerifyArgs& args) {
     portal_eyes += v.portal_viewpoints;
     if (!keep_images) {
       rows.push_back(judge_cell(j, v, pvs[c], c));
+      if (!cluster_of.empty()) {
+        rows.back().pvs_clusters = b->cells()[c].pvs_count;
+        rows.back().exact_clusters = clusters_holding(v.exact, cluster_of);
+      }
       missed_at.push_back(rows.back().missed ? first_missed(j, v, pvs[c]) : std::string());
       v.ids = std::vector<std::uint32_t>();  // not `= {}`: that clears but keeps the capacity
       v.offsets = std::vector<std::uint32_t>();
@@ -232,6 +240,9 @@ int verify(const VerifyArgs& args) {
   std::printf("polygons drawn average %.1f worst %llu (exact average %.1f)\n", r.pvs_average,
               static_cast<unsigned long long>(r.pvs_worst), r.exact_average);
   std::printf("reduction factor %.2f\n", r.reduction);
+  if (!cluster_of.empty())
+    std::printf("PVS / exact clusters %.3f (worst cell %.3f): %.1f clusters drawn on average, exact %.1f\n",
+                r.cluster_ratio, r.cluster_ratio_worst, r.cluster_pvs_average, r.cluster_exact_average);
   return r.missed == 0 ? 0 : 2;
 }
 

@@ -245,23 +245,54 @@ std::vector<bool> cells_to_judge(const std::vector<bool>& no_open_space) {
   return judge;
 }
 
+std::vector<std::uint32_t> cluster_of_polygons(std::size_t polygons,
+                                               std::span<const model::ClusterRecord> clusters,
+                                               std::span<const std::uint32_t> cluster_polygons) {
+  std::vector<std::uint32_t> out(polygons, kNoCluster);
+  for (std::size_t c = 0; c < clusters.size(); ++c) {
+    const std::uint64_t first = clusters[c].polygon_first;
+    const std::uint64_t end =
+        std::min<std::uint64_t>(first + clusters[c].polygon_count, cluster_polygons.size());
+    for (std::uint64_t i = first; i < end; ++i)
+      if (cluster_polygons[i] < polygons) out[cluster_polygons[i]] = static_cast<std::uint32_t>(c);
+  }
+  return out;
+}
+
+std::uint64_t clusters_holding(std::span<const std::uint32_t> ids,
+                               std::span<const std::uint32_t> cluster_of) {
+  std::vector<std::uint32_t> clusters;
+  for (const auto p : ids)
+    if (p < cluster_of.size() && cluster_of[p] != kNoCluster) clusters.push_back(cluster_of[p]);
+  std::sort(clusters.begin(), clusters.end());
+  return std::uint64_t(std::unique(clusters.begin(), clusters.end()) - clusters.begin());
+}
+
 void summarise(VerifyReport& r) {
   r.missed = r.pixels = 0;
-  std::uint64_t pvs = 0, exact = 0;
+  std::uint64_t pvs = 0, exact = 0, pvs_clusters = 0, exact_clusters = 0;
   r.pvs_worst = 0;
-  r.ratio_worst = 0.0;
+  r.ratio_worst = r.cluster_ratio_worst = 0.0;
   for (const auto& row : r.rows) {
     r.missed += row.missed;
     r.pixels += row.pixels;
     pvs += row.pvs;
     exact += row.exact;
+    pvs_clusters += row.pvs_clusters;
+    exact_clusters += row.exact_clusters;
     r.pvs_worst = std::max(r.pvs_worst, row.pvs);
     if (row.exact > 0) r.ratio_worst = std::max(r.ratio_worst, double(row.pvs) / double(row.exact));
+    if (row.exact_clusters > 0)
+      r.cluster_ratio_worst =
+          std::max(r.cluster_ratio_worst, double(row.pvs_clusters) / double(row.exact_clusters));
   }
   const double n = std::max<double>(1.0, double(r.rows.size()));
   r.pvs_average = double(pvs) / n;
   r.exact_average = double(exact) / n;
   r.ratio = exact > 0 ? double(pvs) / double(exact) : 0.0;
+  r.cluster_pvs_average = double(pvs_clusters) / n;
+  r.cluster_exact_average = double(exact_clusters) / n;
+  r.cluster_ratio = exact_clusters > 0 ? double(pvs_clusters) / double(exact_clusters) : 0.0;
   r.reduction = r.pvs_average > 0.0 ? double(r.polygons) / r.pvs_average : 0.0;
 }
 

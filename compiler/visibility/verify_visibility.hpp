@@ -13,6 +13,7 @@
 #include "compiler/geometry/vis_geometry.hpp"
 #include "compiler/partition/portals.hpp"
 #include "compiler/raycast/ray_caster.hpp"
+#include "model/bundle_format.hpp"
 
 namespace walk::compiler {
 
@@ -98,6 +99,10 @@ class VisibilityJudge {
 struct VerifyRow {
   std::uint32_t cell = 0;
   std::uint64_t pvs = 0, exact = 0, missed = 0, pixels = 0;
+  // In clusters, the PVS's own unit: those in the PVS, and those with a polygon in the exact set (0 and 0
+  // where the PVS is judged by polygons alone). A chair seen from a doorway is one cluster in both, while
+  // its hundreds of polygons count in the PVS and the dozen a viewpoint sees in the exact set.
+  std::uint64_t pvs_clusters = 0, exact_clusters = 0;
 };
 
 struct VerifyReport {
@@ -108,8 +113,21 @@ struct VerifyReport {
   double ratio = 0.0;        // sum of PVS sizes / sum of exact sizes
   double ratio_worst = 0.0;  // worst cell's PVS / exact
   double reduction = 0.0;    // polygons / average PVS
+  // The same in clusters, where the rows count them (else 0).
+  double cluster_pvs_average = 0.0, cluster_exact_average = 0.0;
+  double cluster_ratio = 0.0, cluster_ratio_worst = 0.0;
   std::vector<VerifyRow> rows;
 };
+
+// Per polygon, the index of the cluster holding it (a bundle's CLUS records over its CLPO list); polygons
+// in no cluster get kNoCluster.
+inline constexpr std::uint32_t kNoCluster = 0xffffffffu;
+[[nodiscard]] std::vector<std::uint32_t> cluster_of_polygons(std::size_t polygons,
+                                                             std::span<const model::ClusterRecord> clusters,
+                                                             std::span<const std::uint32_t> cluster_polygons);
+// How many distinct clusters hold the polygons `ids` (those in no cluster, or out of range, count none).
+[[nodiscard]] std::uint64_t clusters_holding(std::span<const std::uint32_t> ids,
+                                             std::span<const std::uint32_t> cluster_of);
 
 // Summarises per-cell rows into a report (cells, portals and polygons filled by the caller).
 void summarise(VerifyReport& report);

@@ -397,5 +397,40 @@ TEST(Pvs, ComputeCellsFillsTheBundleSections) {
   EXPECT_EQ(total, m.b.pvs.size());
 }
 
+// `walk verify visibility`'s ratio in clusters: a polygon counts for the one cluster holding it; polygons
+// in no cluster, ids past the model and records running past the list count nothing.
+TEST(VerifyClusters, CountsTheClustersHoldingThePolygonsSeen) {
+  // Clusters {0, 1}, {2}, {3, 4, 9 (past the model)}, and one whose range runs past the list; polygon 5 in
+  // none.
+  const std::vector<model::ClusterRecord> clusters{{{0, 0, 0}, {1, 1, 1}, 0, 2},
+                                                   {{0, 0, 0}, {1, 1, 1}, 2, 1},
+                                                   {{0, 0, 0}, {1, 1, 1}, 3, 3},
+                                                   {{0, 0, 0}, {1, 1, 1}, 6, 5}};
+  const std::vector<std::uint32_t> list{0, 1, 2, 3, 4, 9};
+  const std::vector<std::uint32_t> of = cluster_of_polygons(6, clusters, list);
+  EXPECT_EQ(of, (std::vector<std::uint32_t>{0, 0, 1, 2, 2, kNoCluster}));
+  EXPECT_EQ(clusters_holding(std::vector<std::uint32_t>{}, of), 0u);
+  EXPECT_EQ(clusters_holding(std::vector<std::uint32_t>{0, 1}, of), 1u);     // one chair, two polygons
+  EXPECT_EQ(clusters_holding(std::vector<std::uint32_t>{1, 2, 4}, of), 3u);  // three clusters
+  EXPECT_EQ(clusters_holding(std::vector<std::uint32_t>{5, 7, 1000}, of), 0u);
+  EXPECT_TRUE(cluster_of_polygons(0, clusters, list).empty());
+
+  // The report: sums over cells, the worst cell's ratio, and a cell with no exact cluster left out of the
+  // worst (as a cell with no exact polygon is).
+  VerifyReport r;
+  r.rows = {{0, 40, 10, 0, 100, 4, 2}, {1, 30, 30, 0, 100, 6, 1}, {2, 5, 0, 0, 100, 3, 0}};
+  summarise(r);
+  EXPECT_DOUBLE_EQ(r.cluster_ratio, 13.0 / 3.0);
+  EXPECT_DOUBLE_EQ(r.cluster_ratio_worst, 6.0);
+  EXPECT_DOUBLE_EQ(r.cluster_pvs_average, 13.0 / 3.0);
+  EXPECT_DOUBLE_EQ(r.cluster_exact_average, 1.0);
+  EXPECT_DOUBLE_EQ(r.ratio, 75.0 / 40.0);  // the polygons' ratio as before
+  VerifyReport none;
+  none.rows = {{0, 40, 10, 0, 100, 0, 0}};
+  summarise(none);
+  EXPECT_EQ(none.cluster_ratio, 0.0);
+  EXPECT_EQ(none.cluster_ratio_worst, 0.0);
+}
+
 }  // namespace test_pvs
 }  // namespace walk::compiler
