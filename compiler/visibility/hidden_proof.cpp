@@ -169,9 +169,10 @@ model::Vec3 centre_of(const Winding& w) {
 }  // namespace
 
 bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is_target, bool top, int depth,
-                          Search& search) const {
+                          Search& search, std::optional<bool> takes) const {
   if (search.stopped()) return false;
-  if (!takes_a_pair(source, dest, dest_is_target, search.target)) return true;  // nothing to see
+  // Nothing to see: no pair.
+  if (!(takes ? *takes : takes_a_pair(source, dest, dest_is_target, search.target))) return true;
   const std::uint64_t waiting = search.options.stop_early ? search.pending : 0;
   if (++search.stats.pairs + waiting > static_cast<std::uint64_t>(search.options.max_pairs)) {
     search.spent = true;
@@ -244,12 +245,14 @@ bool HiddenProver::takes_a_pair(const Piece& source, const Winding& dest, bool d
 
 bool HiddenProver::both_hidden(const Piece& s1, const Winding& d1, const Piece& s2, const Winding& d2,
                                bool dest_is_target, bool top, int depth, Search& search) const {
-  const std::uint64_t waits =
-      search.trying_windows == 0 && takes_a_pair(s2, d2, dest_is_target, search.target) ? 1 : 0;
+  // Asked once: for the count of pieces waiting, then by the second piece's own proof.
+  std::optional<bool> second_takes;
+  if (search.trying_windows == 0) second_takes = takes_a_pair(s2, d2, dest_is_target, search.target);
+  const std::uint64_t waits = second_takes.value_or(false) ? 1 : 0;
   search.pending += waits;
   const bool first = hidden(s1, d1, dest_is_target, top, depth, search);
   search.pending -= waits;
-  return first && hidden(s2, d2, dest_is_target, top, depth, search);
+  return first && hidden(s2, d2, dest_is_target, top, depth, search, second_takes);
 }
 
 std::vector<Winding> HiddenProver::target_outlines(std::uint32_t target) const {
@@ -265,7 +268,7 @@ bool HiddenProver::all_hidden(std::span<const Job> jobs, bool dest_is_target, Se
     search.pending += pairs[i] = takes_a_pair(*jobs[i].source, jobs[i].dest, dest_is_target, search.target);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     search.pending -= pairs[i];
-    if (!hidden(*jobs[i].source, jobs[i].dest, dest_is_target, true, 0, search)) return false;
+    if (!hidden(*jobs[i].source, jobs[i].dest, dest_is_target, true, 0, search, pairs[i] != 0)) return false;
   }
   return true;
 }

@@ -16,6 +16,7 @@
 // hidden face by face of its box (a sight line to it crosses the box's surface first), within the same
 // budget of pairs.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -100,9 +101,9 @@ class HiddenProver {
   };
   // Are all the segments from `source` to `dest` blocked? `dest_is_target`: dest is a piece of the target
   // polygon (else a window); `top`: source is a piece of the viewer, so a sight line that reaches the
-  // target proves it visible.
+  // target proves it visible. `takes`: takes_a_pair's answer for these pieces, where the caller has it.
   [[nodiscard]] bool hidden(const Piece& source, const Winding& dest, bool dest_is_target, bool top,
-                            int depth, Search& search) const;
+                            int depth, Search& search, std::optional<bool> takes = std::nullopt) const;
   // Will hidden(source, dest, dest_is_target, ...) take a pair, or settle the piece without one?
   [[nodiscard]] bool takes_a_pair(const Piece& source, const Winding& dest, bool dest_is_target,
                                   std::uint32_t target) const;
