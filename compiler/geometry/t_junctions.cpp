@@ -197,11 +197,13 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> straight_runs(const Polygon
                                                                    std::span<const BoundaryEdge> boundary) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> runs(boundary.size());
   for (std::size_t i = 0; i < boundary.size(); ++i) runs[i] = {boundary[i].a, boundary[i].b};
-  // One triangle: every edge is an outline edge. No slanted edge: no crease to key (most of a building).
+  // One triangle: every edge is an outline edge (asked first, before any edge is looked at).
+  // No slanted edge: no crease to key (most of a building).
+  if (mesh.triangles.size() <= 3) return runs;
   const bool slanted = std::any_of(boundary.begin(), boundary.end(), [&](const BoundaryEdge& e) {
     return !axial(mesh.vertices[e.a], mesh.vertices[e.b]);
   });
-  if (mesh.triangles.size() <= 3 || !slanted) return runs;
+  if (!slanted) return runs;
   // Boundary edges by start and by end vertex, as sorted (vertex, edge) lists; a vertex met twice is not
   // followed.
   constexpr std::uint32_t kNone = ~0u;
