@@ -56,6 +56,19 @@ using Winding = std::vector<model::Vec3>;  // convex, planar
 // of pass with source behind and pass in front; `flip` reverses them. Degenerate planes are skipped.
 void separating_planes(const Winding& source, const Winding& pass, bool flip, std::vector<Plane>& out);
 
+// The part of `dest` that a sight line from a point of `source` (a convex region's vertices: a winding or
+// a box's corners) through a point of `window` (a convex winding) reaches beyond the window; the source
+// lies in front of the window's plane, dest behind it. A plane with all of the source behind it and all of
+// the window in front has every such line's continuation in front too (Quake vis's separating planes, as
+// the portal flow clips what a pass portal lets through), so dest is clipped by each. Each is first moved
+// back to the source's farthest point, and kept only while the window lies in front of it to within a
+// slack that a line's run past the window cannot grow beyond kPlaneEpsilon (clip_front's own): a line's
+// distance from the plane grows by at most reach / gap times the window's, where gap is the source's least
+// distance from the window's plane. Dest whole when the source touches that plane or the window is
+// degenerate; empty when no such line reaches it.
+[[nodiscard]] Winding reached_through(std::span<const model::Vec3> source, const Winding& window,
+                                      Winding dest);
+
 // A drawn polygon of the bundle (opaque, glass, luminaire panel) in double precision.
 struct VisPolygon {
   std::vector<std::array<model::Vec3, 3>> triangles;

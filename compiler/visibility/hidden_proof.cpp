@@ -75,8 +75,8 @@ HiddenProver::HiddenProver(const std::vector<VisPolygon>& polygons, const RayCas
   }
 }
 
-HiddenProver::Sight HiddenProver::sight(const model::Vec3& from, const model::Vec3& to, std::uint32_t target,
-                                        bool reach_on_miss) const {
+HiddenProver::Sight HiddenProver::sight(const model::Vec3& from, const model::Vec3& to,
+                                        std::uint32_t target) const {
   Sight s;
   Ray ray;
   ray.origin = from;
@@ -86,12 +86,7 @@ HiddenProver::Sight HiddenProver::sight(const model::Vec3& from, const model::Ve
   ray.tmax = 1.0 + 1e-9;
   for (int layer = 0; layer <= kMaxGlassLayers + 4; ++layer) {
     const RayHit h = caster_.closest(ray);
-    if (!h.hit()) {
-      // Nothing in the way to the end point: it is seen, when it stands for the target (a point of a
-      // window is not).
-      s.reaches = reach_on_miss && s.count == 0 && !s.opaque_unnamed;
-      return s;
-    }
+    if (!h.hit()) return s;
     const bool drawn = !cull_back_faces_ || h.front || glass_[h.polygon];
     if (h.polygon == target && drawn) {
       s.reaches = s.count == 0 && !s.opaque_unnamed;  // unless something drawn stood in front
@@ -183,10 +178,16 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
   const Box db = bounds_of(dest);
   // A box face's centre is seen when the line meets the cluster or nothing before it.
   const bool looks_for_target = dest_is_target || search.box_target;
-  const Sight s = sight(0.5 * (sb.min + sb.max), centre_of(dest),
-                        looks_for_target ? search.target : kNoTarget, search.box_target && top);
-  if (s.reaches && top) {
-    search.visible = true;
+  // Between the pieces' vertex means: points of both, as both are convex.
+  const Sight s =
+      sight(centre_of(source.points), centre_of(dest), looks_for_target ? search.target : kNoTarget);
+  // A sight line that gets through disproves "every segment is blocked": it meets the target, or meets
+  // nothing on the way to a window's or a box face's centre (every point of those must be hidden; a piece of
+  // a polygon's hull may hold none of the polygon). At the top the target is seen. Below (a window's side)
+  // splitting could only find the same open line again, down to the depth limit or the allowance.
+  const bool through = s.reaches || (!dest_is_target && s.count == 0 && !s.opaque_unnamed);
+  if (through) {
+    if (top) search.visible = true;
     return false;
   }
   for (int b = 0; b < s.count; ++b)
@@ -203,7 +204,11 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
       for (const Winding& window : shaft.leaks) {
         if (hidden(source, window, false, false, depth + 1, search)) continue;
         if (search.stopped()) break;
-        if (hidden({window, false}, dest, dest_is_target, false, depth + 1, search)) continue;
+        // Only what a sight line from the source through the window reaches (else the window's side
+        // would have to hide the target from the whole window, along lines that never come from the source).
+        if (hidden({window, false}, reached_through(source.points, window, dest), dest_is_target, false,
+                   depth + 1, search))
+          continue;
         all = false;
         break;
       }

@@ -10,7 +10,8 @@
 // proves it visible (stop, keep it), one that is blocked names the planes worth testing. Where a plane's
 // cover leaves only small parts of the pair's sight lines open (where walls meet, a line past one wall's
 // end meets the next), the proof goes on through each open part as a window: every sight line through it
-// must be blocked before it (from the source to the window) or after it (from the window to the target).
+// must be blocked before it (from the source to the window) or after it (from the window to the part of the
+// target a line from the source through the window reaches).
 // Splitting alone never settles the sight lines through a corner where two walls meet. A polygon left
 // undecided when the budget runs out is kept, so the PVS stays conservative. A detail cluster is proven
 // hidden face by face of its box (a sight line to it crosses the box's surface first), within the same
@@ -89,9 +90,7 @@ class HiddenProver {
   };
   // Polygon ids: the sight line looks for `target` (kNoTarget: none, it ends at a window).
   static constexpr std::uint32_t kNoTarget = 0xffffffffu;
-  // `reach_on_miss`: the end point stands for the target, so a line meeting nothing reaches it.
-  [[nodiscard]] Sight sight(const model::Vec3& from, const model::Vec3& to, std::uint32_t target,
-                            bool reach_on_miss = false) const;
+  [[nodiscard]] Sight sight(const model::Vec3& from, const model::Vec3& to, std::uint32_t target) const;
   // What a sight line must reach to see the target: its hull, or a detail cluster's box faces.
   [[nodiscard]] std::vector<Winding> target_outlines(std::uint32_t target) const;
   struct Search;

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <random>
 
 #include "compiler/geometry/vis_geometry.hpp"
 #include "compiler/partition/axial_cover.hpp"
 #include "compiler/partition/partition.hpp"
+#include "compiler/visibility/vis_items.hpp"
 
 namespace walk::compiler {
 namespace test_visibility_predicates {  // named, not anonymous: the suite compiles as unity batches
@@ -201,6 +203,72 @@ TEST(VisibilityPredicates, OpenRegionDropsCracksKeepsDoors) {
   EXPECT_TRUE(open_region({r(0, 1e-4, 0, 3)}, 5e-4).empty());           // 0.1 mm crack
   EXPECT_NEAR(area_of(open_region({r(0, 1, 0, 2)}, 5e-4)), 2.0, 1e-6);  // a door stays whole
   EXPECT_TRUE(open_region({}, 5e-4).empty());
+}
+
+// Does the convex planar winding `w` hold `p` (in its plane) to `tol` metres?
+bool holds(const Winding& w, const model::Vec3& p, double tol) {
+  if (w.size() < 3) return false;
+  model::Vec3 n{0.0};
+  for (std::size_t i = 1; i + 1 < w.size(); ++i) n += glm::cross(w[i] - w[0], w[i + 1] - w[0]);
+  n = glm::normalize(n);
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const model::Vec3 inward = glm::normalize(glm::cross(n, w[(i + 1) % w.size()] - w[i]));
+    if (glm::dot(inward, p - w[i]) < -tol) return false;
+  }
+  return true;
+}
+
+Winding square_at(double z, double lo, double hi) {
+  return {{lo, lo, z}, {hi, lo, z}, {hi, hi, z}, {lo, hi, z}};
+}
+
+// Sight lines from the source through the unit window in z = 0, to the plane z = dest_z below: every one
+// lands in what reached_through keeps of a square there, however far the square lies past a window close
+// to the source (the slack a far target multiplies). Corner to corner lines are the grazing ones.
+void expect_every_line_kept(const std::vector<model::Vec3>& source, const Box& source_box, double dest_z,
+                            double half) {
+  const Winding dest = square_at(dest_z, -half, half);
+  const Winding kept = reached_through(source, kSquare, dest);
+  ASSERT_GE(kept.size(), 3u);
+  EXPECT_LT(area(kept), 0.5 * area(dest)) << "the far square is cut down to the lines' reach";
+  auto landing = [&](const model::Vec3& s, const model::Vec3& w) {
+    return s + (w - s) * ((dest_z - s.z) / (w.z - s.z));
+  };
+  for (const auto& s : source)
+    for (const auto& w : kSquare) EXPECT_TRUE(holds(kept, landing(s, w), kPlaneEpsilon)) << dest_z;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 20000; ++i) {
+    const model::Vec3 s = source_box.min + model::Vec3{u(rng), u(rng), u(rng)} * source_box.size();
+    const model::Vec3 w{u(rng), u(rng), 0.0};
+    ASSERT_TRUE(holds(kept, landing(s, w), kPlaneEpsilon)) << "line " << i << ", dest z " << dest_z;
+  }
+}
+
+TEST(VisibilityPredicates, ReachedThroughAWindowKeepsEveryLineFromTheSource) {
+  // A box over the window, and a flat portal 1 cm over it with the far square 100 m down, where the lines
+  // spread 7.5 km either way: the slack a far target multiplies by 10^4.
+  const Box over{{-1.0, -1.0, 1.0}, {2.0, 2.0, 2.0}};
+  expect_every_line_kept(box_corners(over), over, -3.0, 50.0);
+  const Box portal{{0.25, 0.25, 1e-2}, {0.75, 0.75, 1e-2}};
+  const Winding flat = square_at(1e-2, 0.25, 0.75);
+  expect_every_line_kept(flat, portal, -100.0, 2e4);
+}
+
+TEST(VisibilityPredicates, ReachedThroughDegenerateCases) {
+  const std::vector<model::Vec3> over = box_corners(Box{{-1.0, -1.0, 1.0}, {2.0, 2.0, 2.0}});
+  // Past every line's reach (at z = -3 they land within x -5..8): nothing.
+  EXPECT_TRUE(
+      reached_through(over, kSquare, Winding{{20, 0, -3}, {21, 0, -3}, {21, 1, -3}, {20, 1, -3}}).empty());
+  const Winding dest = square_at(-3.0, -50.0, 50.0);
+  // A source touching the window's plane reaches round its edges at any angle: the square stays whole.
+  const std::vector<model::Vec3> touching = box_corners(Box{{-1.0, -1.0, 0.0}, {2.0, 2.0, 1.0}});
+  EXPECT_EQ(reached_through(touching, kSquare, dest), dest);
+  // A window of collinear points, an empty source, a dest of two points: left as they are.
+  EXPECT_EQ(reached_through(over, Winding{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, dest), dest);
+  EXPECT_EQ(reached_through({}, kSquare, dest), dest);
+  const Winding segment{{0, 0, -3}, {1, 0, -3}};
+  EXPECT_EQ(reached_through(over, kSquare, segment), segment);
 }
 
 }  // namespace test_visibility_predicates
