@@ -190,13 +190,19 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
     if (top) search.visible = true;
     return false;
   }
-  for (int b = 0; b < s.count; ++b)
+  // The first plane's shaft is kept: its open parts are the windows below.
+  Shaft shaft;
+  if (s.count > 0) {
+    shaft = planes_.shaft(s.blockers[0], source.points, dest, false);
+    if (shaft.blocked) return true;
+  }
+  for (int b = 1; b < s.count; ++b)
     if (planes_.blocks(s.blockers[b], source.points, dest)) return true;
   if (depth >= search.options.max_depth) return false;
 
   // Through the open parts of the first plane the sight line met, when they are a small part of its section.
   if (s.count > 0) {
-    const Shaft shaft = planes_.shaft(s.blockers[0], source.points, dest, true);
+    planes_.find_leaks(s.blockers[0], shaft);
     if (shaft.applies && !shaft.leaks.empty() &&
         shaft.leak_area <= search.options.window_fraction * shaft.section_area) {
       bool all = true;

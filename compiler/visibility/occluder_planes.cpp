@@ -211,25 +211,34 @@ Shaft OccluderPlanes::shaft(std::size_t i, std::span<const model::Vec3> source, 
     for (std::size_t c = 0; c < source.size(); ++c)
       add(dc[c] * side <= kShaftSlack ? source[c] : source[c] + (t - source[c]) * (dc[c] / (dc[c] - dt)));
   }
-  const ClipperLib::Path section = hull_of(std::move(crossings));
+  out.section = hull_of(std::move(crossings));
+  const ClipperLib::Path& section = out.section;
   if (section.empty()) return out;  // collinear crossings: rounding decides, so prove nothing
+  out.facing = facing;
   out.section_area = std::abs(ClipperLib::Area(section)) / (kAxialClipperScale * kAxialClipperScale);
   ClipperLib::IntPoint box_lo = section.front(), box_hi = section.front();
   for (const auto& q : section) {
     box_lo = {std::min(box_lo.X, q.X), std::min(box_lo.Y, q.Y)};
     box_hi = {std::max(box_hi.X, q.X), std::max(box_hi.Y, q.Y)};
   }
+  out.section_lo = box_lo;
+  out.section_hi = box_hi;
   const bool outside = double(box_lo.X) / kAxialClipperScale < op.lo[facing][0] - kShaftSlack ||
                        double(box_lo.Y) / kAxialClipperScale < op.lo[facing][1] - kShaftSlack ||
                        double(box_hi.X) / kAxialClipperScale > op.hi[facing][0] + kShaftSlack ||
                        double(box_hi.Y) / kAxialClipperScale > op.hi[facing][1] + kShaftSlack;
-  if (outside && !want_leaks) return out;
   out.blocked = !outside && op.index[facing].contains(section, kShaftSlack * kAxialClipperScale);
-  if (!want_leaks || out.blocked) return out;
+  if (want_leaks) find_leaks(i, out);
+  return out;
+}
+
+void OccluderPlanes::find_leaks(std::size_t i, Shaft& shaft) const {
+  if (!shaft.applies || shaft.blocked || shaft.section.empty() || !shaft.leaks.empty()) return;
+  const OccluderPlane& op = planes_[i];
   ClipperLib::Paths near;
-  op.index[facing].paths_near(box_lo, box_hi, near);
+  op.index[shaft.facing].paths_near(shaft.section_lo, shaft.section_hi, near);
   ClipperLib::Clipper c;
-  c.AddPath(section, ClipperLib::ptSubject, true);
+  c.AddPath(shaft.section, ClipperLib::ptSubject, true);
   c.AddPaths(near, ClipperLib::ptClip, true);
   ClipperLib::Paths open;
   c.Execute(ClipperLib::ctDifference, open, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
@@ -243,10 +252,9 @@ Shaft OccluderPlanes::shaft(std::size_t i, std::span<const model::Vec3> source, 
     for (const auto& q : h)
       w.push_back(op.origin + op.u * (double(q.X) / kAxialClipperScale) +
                   op.v * (double(q.Y) / kAxialClipperScale));
-    out.leak_area += std::abs(ClipperLib::Area(h)) / (kAxialClipperScale * kAxialClipperScale);
-    out.leaks.push_back(std::move(w));
+    shaft.leak_area += std::abs(ClipperLib::Area(h)) / (kAxialClipperScale * kAxialClipperScale);
+    shaft.leaks.push_back(std::move(w));
   }
-  return out;
 }
 
 }  // namespace walk::compiler

@@ -42,6 +42,10 @@ struct Shaft {
   double section_area = 0.0;   // of the crossings' convex hull, m^2
   std::vector<Winding> leaks;  // convex hulls of the uncovered parts (asked for)
   double leak_area = 0.0;      // theirs, m^2
+  // Kept for OccluderPlanes::find_leaks: the section in Clipper units, its bounds, the cover's facing.
+  ClipperLib::Path section;
+  ClipperLib::IntPoint section_lo, section_hi;
+  int facing = 0;
 };
 
 class OccluderPlanes {
@@ -67,6 +71,9 @@ class OccluderPlanes {
   // line that is not blocked there passes through one of them.
   [[nodiscard]] Shaft shaft(std::size_t i, std::span<const model::Vec3> source, const Winding& target,
                             bool want_leaks) const;
+  // The leaks of a shaft of plane `i` asked without them, as shaft(..., true) finds them: a proof tests the
+  // plane first and wants its open parts only when no plane blocks.
+  void find_leaks(std::size_t i, Shaft& shaft) const;
 
  private:
   bool cull_back_faces_;
