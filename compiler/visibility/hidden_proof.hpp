@@ -7,7 +7,8 @@
 // of pieces, one plane's fused occluders (occluder_planes.hpp) block all the segments between them: walls
 // in several planes that together hide a room do it piece by piece, which is occluder fusion across
 // planes. Each pair first casts a sight line between the pieces' centres: one that reaches the polygon
-// proves it visible (stop, keep it), one that is blocked names the planes worth testing. Where a plane's
+// proves it visible (stop, keep it; on a window's side it only ends that branch), one that is blocked names
+// the planes worth testing. Where a plane's
 // cover leaves only small parts of the pair's sight lines open (where walls meet, a line past one wall's
 // end meets the next), the proof goes on through each open part as a window: every sight line through it
 // must be blocked before it (from the source to the window) or after it (from the window to the part of the
