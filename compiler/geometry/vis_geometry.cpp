@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <limits>
 
@@ -173,23 +172,15 @@ void separating_planes(const Winding& source, const Winding& pass, bool flip, st
 
 Winding reached_through(std::span<const model::Vec3> source, const Winding& window, Winding dest) {
   if (source.empty() || window.size() < 3 || dest.size() < 3) return dest;
-  model::Vec3 normal{0.0};  // the window's, by its fan's summed cross products
-  for (std::size_t i = 1; i + 1 < window.size(); ++i)
-    normal += glm::cross(window[i] - window.front(), window[i + 1] - window.front());
-  if (!(glm::length(normal) > 0.0)) return dest;
-  normal = glm::normalize(normal);
+  const model::Vec3 area = model::area_vector(window);
+  if (!(glm::length(area) > 0.0)) return dest;
+  const model::Vec3 normal = glm::normalize(area);
   double gap = std::numeric_limits<double>::infinity();
   for (const auto& p : source) gap = std::min(gap, std::abs(glm::dot(normal, p - window.front())));
   if (!(gap > kPlaneEpsilon)) return dest;
-  Box reach{source.front(), source.front()};
-  for (const auto& p : source) {
-    reach.min = glm::min(reach.min, p);
-    reach.max = glm::max(reach.max, p);
-  }
-  for (const auto& p : dest) {
-    reach.min = glm::min(reach.min, p);
-    reach.max = glm::max(reach.max, p);
-  }
+  model::Bounds reach;
+  for (const auto& p : source) reach.add(p);
+  for (const auto& p : dest) reach.add(p);
   const double window_slack = 0.5 * kPlaneEpsilon * gap / std::max(glm::length(reach.size()), gap);
   const Winding source_points(source.begin(), source.end());
   std::vector<Plane> planes;

@@ -176,7 +176,6 @@ bool HiddenProver::hidden(const Piece& source, const Winding& dest, bool dest_is
   if (!dest_is_target || !top) ++search.stats.windows;
   const Box sb = bounds_of(source.points);
   const Box db = bounds_of(dest);
-  // A box face's centre is seen when the line meets the cluster or nothing before it.
   const bool looks_for_target = dest_is_target || search.box_target;
   // Between the pieces' vertex means: points of both, as both are convex.
   const Sight s =

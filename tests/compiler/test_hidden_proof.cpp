@@ -133,6 +133,35 @@ TEST(OccluderPlanes, FloatCracksCloseButAMillimetreGapLeaks) {
   }
 }
 
+// A brute-force caster over the polygons' triangles, each carrying its polygon's index.
+std::unique_ptr<RayCaster> brute_caster(const std::vector<VisPolygon>& polygons) {
+  std::vector<Triangle> triangles;
+  for (std::uint32_t p = 0; p < polygons.size(); ++p)
+    for (const auto& t : polygons[p].triangles) triangles.push_back({t[0], t[1], t[2], p});
+  return make_ray_caster("brute", triangles);
+}
+
+// Of `n` random sight lines from a point of `viewer` to a point `target_point(u)` draws (u(): uniform in
+// 0..1, drawn after the viewer point), how many meet `target` first.
+template <typename TargetPoint>
+int lines_reaching(const std::vector<VisPolygon>& polygons, const RayCaster& caster, const Box& viewer,
+                   std::uint32_t target, int n, std::uint64_t seed, TargetPoint target_point) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  auto u = [&] { return uniform(rng); };
+  std::vector<char> glass(polygons.size(), 0);
+  int reach = 0;
+  for (int i = 0; i < n; ++i) {
+    Ray r;
+    r.origin = viewer.min + Vec3{u(), u(), u()} * viewer.size();
+    r.dir = target_point(u) - r.origin;
+    std::vector<std::uint32_t> ids;
+    trace_through_glass(caster, r, glass, ids, true);
+    reach += !ids.empty() && ids.front() == target ? 1 : 0;
+  }
+  return reach;
+}
+
 // Two walls meeting at a corner (top view: one along x = 0 for y >= 0 facing +x, one along y = 0 for
 // x <= 0 facing -y, both z 0..3), a viewer box in the quadrant x > 0, y < 0 and a target in the quadrant
 // x < 0, y > 0. Every sight line between them crosses one wall or the other, but sight lines through the
@@ -152,29 +181,15 @@ Corner corner(double gap) {
   Corner c;
   c.target = m.rect(0, -1.0, 0.5, 1.5, 0.5, 1.5, model::Role::Opaque, 1);  // facing the corner
   c.polygons = vis_polygons(m.b.vertices, m.b.indices, m.b.polygons);
-  std::vector<Triangle> triangles;
-  for (std::uint32_t p = 0; p < c.polygons.size(); ++p)
-    for (const auto& t : c.polygons[p].triangles) triangles.push_back({t[0], t[1], t[2], p});
-  c.caster = make_ray_caster("brute", triangles);
+  c.caster = brute_caster(c.polygons);
   return c;
 }
 
-// Of `n` random sight lines from the viewer box to the target, how many reach it.
+// Of `n` random sight lines from the corner's viewer box to its target, how many reach it.
 int sight_lines_reaching(const Corner& c, int n) {
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<char> glass(c.polygons.size(), 0);
-  int reach = 0;
-  for (int i = 0; i < n; ++i) {
-    Ray r;
-    r.origin = c.viewer.min + Vec3{u(rng), u(rng), u(rng)} * c.viewer.size();
-    const Vec3 q{-1.0, 0.5 + u(rng), 0.5 + u(rng)};
-    r.dir = q - r.origin;
-    std::vector<std::uint32_t> ids;
-    trace_through_glass(*c.caster, r, glass, ids, true);
-    reach += !ids.empty() && ids.front() == c.target ? 1 : 0;
-  }
-  return reach;
+  return lines_reaching(c.polygons, *c.caster, c.viewer, c.target, n, 5, [](auto& u) {
+    return Vec3{-1.0, 0.5 + u(), 0.5 + u()};
+  });
 }
 
 TEST(HiddenProver, ThroughACornerWhereTwoWallsMeet) {
@@ -235,10 +250,7 @@ Corner corner_with_cluster(double gap, Vec3 lo, Vec3 hi) {
     cluster.triangles.insert(cluster.triangles.end(), p.triangles.begin(), p.triangles.end());
   c.target = static_cast<std::uint32_t>(c.polygons.size());
   c.polygons.push_back(std::move(cluster));
-  std::vector<Triangle> triangles;
-  for (std::uint32_t p = 0; p < c.polygons.size(); ++p)
-    for (const auto& t : c.polygons[p].triangles) triangles.push_back({t[0], t[1], t[2], p});
-  c.caster = make_ray_caster("brute", triangles);
+  c.caster = brute_caster(c.polygons);
   return c;
 }
 
@@ -319,28 +331,15 @@ TwoHoles two_holes(double hole_b) {
   TwoHoles h;
   h.target = m.rect(2, -6.0, 4.0, 9.0, -0.1, 0.1);
   h.polygons = vis_polygons(m.b.vertices, m.b.indices, m.b.polygons);
-  std::vector<Triangle> triangles;
-  for (std::uint32_t p = 0; p < h.polygons.size(); ++p)
-    for (const auto& t : h.polygons[p].triangles) triangles.push_back({t[0], t[1], t[2], p});
-  h.caster = make_ray_caster("brute", triangles);
+  h.caster = brute_caster(h.polygons);
   return h;
 }
 
 // Of `n` random sight lines from the viewer to the target, how many reach it.
 int sight_lines_reaching(const TwoHoles& h, int n) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<char> glass(h.polygons.size(), 0);
-  int reach = 0;
-  for (int i = 0; i < n; ++i) {
-    Ray r;
-    r.origin = h.viewer.min + Vec3{u(rng), u(rng), u(rng)} * h.viewer.size();
-    r.dir = Vec3{4.0 + 5.0 * u(rng), -0.1 + 0.2 * u(rng), -6.0} - r.origin;
-    std::vector<std::uint32_t> ids;
-    trace_through_glass(*h.caster, r, glass, ids, true);
-    reach += !ids.empty() && ids.front() == h.target ? 1 : 0;
-  }
-  return reach;
+  return lines_reaching(h.polygons, *h.caster, h.viewer, h.target, n, 3, [](auto& u) {
+    return Vec3{4.0 + 5.0 * u(), -0.1 + 0.2 * u(), -6.0};
+  });
 }
 
 TEST(HiddenProver, ThroughAHoleOnlyWhatTheViewerReachesCounts) {
